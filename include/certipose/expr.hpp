@@ -1,0 +1,9 @@
+// certipose/expr.hpp — umbrella for compile-time expressions and constraints: box variables,
+// constants, interval parameters, operators, 3-vectors, `in`/`<=`/`>=`/`==` constraints and
+// forward evaluation (expr/).
+#pragma once
+
+#include "certipose/expr/constraint.hpp"
+#include "certipose/expr/evaluate.hpp"
+#include "certipose/expr/expression.hpp"
+#include "certipose/expr/vector.hpp"
