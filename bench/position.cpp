@@ -1,0 +1,51 @@
+// The position stage (paper Algorithm 3 lines 1–27) for the sample part's facet of interest at
+// ε_p = 0.1 m, with each occlusion policy.
+#include <benchmark/benchmark.h>
+
+#include <certipose/camera.hpp>
+#include <certipose/constraints/paper_position_constraints.hpp>
+#include <certipose/geometry/sample_part.hpp>
+#include <certipose/interval/boost_interval.hpp>
+#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
+#include <certipose/occlusion/no_occlusion.hpp>
+#include <certipose/solver/position_stage.hpp>
+
+namespace {
+
+using I = certipose::boost_interval;
+
+const certipose::sample_part& part() {
+    static const certipose::sample_part p = certipose::make_sample_part();
+    return p;
+}
+
+certipose::position_problem problem() {
+    const certipose::thin_lens_camera camera(certipose::thin_lens_parameters{
+        .focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
+        .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048});
+    return {part().mesh.facet(part().facet_of_interest), camera.distance_range(), {.min_view_angle = 0.35}};
+}
+
+template <class Occlusion>
+void run(benchmark::State& state) {
+    const auto pb = problem();
+    const Occlusion occlusion(part().mesh);
+    std::size_t valid = 0, boundary = 0, tests = 0;
+    for (auto _ : state) {
+        auto r = certipose::pave_positions<I, certipose::paper_position_constraints<I>>(
+            pb, part().facet_of_interest, occlusion, {}, 0.1);
+        valid = r.boxes.valid.size(), boundary = r.boxes.boundary.size(), tests = r.occlusion_tests;
+        benchmark::DoNotOptimize(r);
+    }
+    state.counters["valid"] = static_cast<double>(valid);
+    state.counters["boundary"] = static_cast<double>(boundary);
+    state.counters["occlusion_tests"] = static_cast<double>(tests);
+}
+
+void BM_position_paving_sample_part(benchmark::State& state) { run<certipose::aabb_occlusion>(state); }
+void BM_position_paving_sample_part_no_occlusion(benchmark::State& state) { run<certipose::no_occlusion>(state); }
+
+}  // namespace
+
+BENCHMARK(BM_position_paving_sample_part)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_position_paving_sample_part_no_occlusion)->Unit(benchmark::kMillisecond);

@@ -1,0 +1,415 @@
+// certipose/occlusion/cgal_aabb_occlusion.hpp — `aabb_occlusion`, a fast certified occlusion
+// test (past the paper, DESIGN.md §7).
+//
+// The union of all sight lines from a position box B to the facet f is the convex hull
+// H = conv(B ∪ f). With B strictly in front of f's plane, H meets that plane exactly in f, so
+// the facet is VISIBLE from every point of B iff no other scene triangle meets H off the
+// facet plane (a triangle may touch H only inside f: the part's faces around f do). The test
+// walks a CGAL AABB tree over all scene triangles, pruning nodes outside one of H's planes or
+// behind f's plane, and decides each remaining triangle exactly: cheap double tests with
+// rigorous error bounds settle nearly every case (separating planes and axes prove a miss; a
+// triangle vertex strictly inside H or a corner–facet-vertex sight line crossing the triangle
+// proves a hit); the rest go to an exact rational clip of the triangle by H. Triangles that
+// share an edge with f are decided by one exact orientation against H's face through that
+// edge; those sharing only a vertex by exact cone tests with the same rational fallback.
+// OCCLUDED is answered from two exact certificates only — every box corner strictly behind f's
+// plane (with a closed outward part, every sight line to f's interior then runs inside the
+// part), or one scene triangle whose plane strictly separates B from f and which contains all
+// 24 corner–vertex sight-line crossings (then, by convexity, it blocks every sight line) — so
+// the policy may say PARTIAL where the boolean test says OCCLUDED, never the reverse of a
+// certified answer. A box touching or crossing f's plane is never VISIBLE (some of its points
+// see f edge-on or from behind).
+//
+// Built once per scene: validates every mesh as a closed solid (detail/cgal_scene.hpp), copies
+// the triangles and builds the tree. `classify` is const and thread-safe: one object may be
+// shared by many threads (copies share the immutable scene). It holds round-to-nearest for its
+// duration, so callers may hold an interval rounding guard.
+#pragma once
+
+#include <certipose/error.hpp>
+#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/interval/concept.hpp>
+#include <certipose/interval/detail/fenv.hpp>
+#include <certipose/occlusion/concept.hpp>
+#include <certipose/occlusion/detail/box_bounds.hpp>
+#include <certipose/occlusion/detail/cgal_scene.hpp>
+#include <certipose/occlusion/detail/exact_geometry.hpp>
+#include <certipose/pose/pose_box.hpp>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace certipose {
+
+namespace detail::occ {
+
+struct scene_triangle {
+    std::array<pt, 3> v;
+    std::array<std::uint32_t, 3> id;  ///< vertex ids; part ids are the part's vertex indices
+    pt lo, hi;                        ///< bounding box
+};
+
+/// Appends the faces of `m` with vertex ids offset by `offset` (so that ids of different
+/// meshes never collide).
+inline void append_triangles(std::vector<scene_triangle>& out, const triangle_mesh& m,
+                             std::uint32_t offset) {
+    for (const auto& f : m.faces()) {
+        scene_triangle t;
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Vector3d& p = m.vertices()[f[k]];
+            t.v[k] = {p.x(), p.y(), p.z()};
+            t.id[k] = f[k] + offset;
+        }
+        for (int c = 0; c < 3; ++c) {
+            t.lo[c] = std::min({t.v[0][c], t.v[1][c], t.v[2][c]});
+            t.hi[c] = std::max({t.v[0][c], t.v[1][c], t.v[2][c]});
+        }
+        out.push_back(t);
+    }
+}
+
+/// The immutable scene of an aabb_occlusion: triangles (part faces first, in face order, then
+/// each occluder's) and the AABB tree over them.
+struct aabb_scene {
+    using triangle_3 = epick::Triangle_3;
+    using primitive = CGAL::AABB_triangle_primitive<epick, std::vector<triangle_3>::const_iterator>;
+    using tree_type = CGAL::AABB_tree<CGAL::AABB_traits<epick, primitive>>;
+
+    std::vector<scene_triangle> tris;
+    std::vector<triangle_3> cgal_tris;
+    tree_type tree;
+    std::size_t part_faces = 0;
+    mutable std::atomic<std::uint64_t> exact_clips{0};
+};
+
+/// Counters of one classification (tests and benchmarks read them through `explain`).
+struct aabb_trace {
+    std::size_t triangles_tested = 0;
+    std::size_t exact_clips = 0;
+    std::size_t blocker = static_cast<std::size_t>(-1);  ///< a triangle that blocks, if any
+};
+
+/// Does triangle T block some sight line, i.e. meet H off the facet plane? Exact.
+inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, bool is_part,
+                   const scene_triangle& T, aabb_trace& trace) {
+    for (int k = 0; k < 3; ++k)
+        if (T.hi[k] < H.lo[k] || T.lo[k] > H.hi[k]) return false;
+    ++trace.triangles_tested;
+    const hplane& fp = H.facet_plane();
+    std::array<int, 3> behind{};
+    for (int m = 0; m < 3; ++m) behind[m] = side(fp, T.v[m]);
+    // Entirely in the closed half-space behind the facet plane: T ∩ H lies in f.
+    if (behind[0] >= 0 && behind[1] >= 0 && behind[2] >= 0) return false;
+
+    // Adjacency with the facet (shared part vertices).
+    int shared = 0;
+    std::array<int, 3> where{-1, -1, -1};  // facet slot of each T vertex
+    if (is_part)
+        for (int m = 0; m < 3; ++m)
+            for (int s = 0; s < 3; ++s)
+                if (T.id[m] == fid[s]) where[m] = s, ++shared;
+
+    const auto exact = [&] {
+        ++trace.exact_clips;
+        return triangle_meets_hull_front_exact(H, T.v);
+    };
+    // T's own plane: sides of the 11 hull points (computed lazily, used by several tests).
+    std::array<int, 11> tside{};
+    bool have_tside = false;
+    const auto t_sides = [&] {
+        if (!have_tside)
+            for (int p = 0; p < 11; ++p) tside[p] = orient3(T.v[0], T.v[1], T.v[2], H.pts[p]);
+        have_tside = true;
+    };
+    // Witnesses of a hit: a vertex strictly inside H (then strictly in front), or a
+    // corner–facet-vertex segment crossing T at an interior point of the segment.
+    const auto witnessed = [&] {
+        for (int m = 0; m < 3; ++m) {
+            bool inside = true;
+            for (std::size_t p = 0; p < H.num_planes && inside; ++p)
+                inside = side(H.planes[p], T.v[m]) < 0;
+            if (inside) return true;
+        }
+        t_sides();
+        for (int c = 0; c < 8; ++c)
+            for (int q = 8; q < 11; ++q) {
+                if (tside[c] == 0 || tside[q] == 0 || tside[c] == tside[q]) continue;
+                const int o1 = orient3(H.pts[c], H.pts[q], T.v[0], T.v[1]);
+                const int o2 = orient3(H.pts[c], H.pts[q], T.v[1], T.v[2]);
+                const int o3 = orient3(H.pts[c], H.pts[q], T.v[2], T.v[0]);
+                if (o1 != 0 && o1 == o2 && o2 == o3) return true;
+            }
+        return false;
+    };
+
+    if (shared == 3) return true;  // a duplicate of the facet (invalid scene): be conservative
+    if (shared == 2) {
+        // Edge-adjacent: T = conv(e, w) with e a facet edge. H's face through e is planes[1+m]
+        // for edge (f[m], f[m+1]); T meets H only in e iff w is strictly beyond that face, or
+        // w is not in front at all (handled above).
+        int w = 0;
+        while (where[w] >= 0) ++w;
+        const int a = where[(w + 1) % 3], b = where[(w + 2) % 3];
+        // e is traversed (a → b) by T; the facet traverses it b → a. Edge slot m has
+        // f[m] → f[m+1].
+        const int m = (b + 1) % 3 == a ? b : a;
+        return side(H.planes[1 + static_cast<std::size_t>(m)], T.v[w]) <= 0;
+    }
+    if (shared == 1) {
+        // Vertex-adjacent: T ∩ H must be {v}. A plane of H through v with the other two
+        // vertices strictly outside proves it; so does T's plane with every other hull point
+        // strictly on one side.
+        int vi = 0;
+        while (where[vi] < 0) ++vi;
+        const pt& v = T.v[vi];
+        const pt& w1 = T.v[(vi + 1) % 3];
+        const pt& w2 = T.v[(vi + 2) % 3];
+        for (std::size_t p = 0; p < H.num_planes; ++p) {
+            const hplane& h = H.planes[p];
+            if (side(h, v) == 0 && side(h, w1) > 0 && side(h, w2) > 0) return false;
+        }
+        t_sides();
+        int pos = 0, neg = 0;
+        std::array<int, 11> zeros{};
+        int nz = 0;
+        for (int p = 0; p < 11; ++p) {
+            if (p == 8 + where[vi]) continue;
+            pos += tside[p] > 0, neg += tside[p] < 0;
+            if (tside[p] == 0) zeros[nz++] = p;
+        }
+        if (pos == 0 || neg == 0) {
+            // T's plane supports H, so T ∩ H = T ∩ G with G = conv(v, zeros), a face of H in
+            // that plane: decide whether the 2D cones of T and G at v meet beyond v. Two
+            // pointed plane cones meet iff one holds a boundary ray of the other.
+            for (int a = 0; a < nz; ++a)
+                if (in_cone2(v, w1, w2, H.pts[zeros[a]])) return true;
+            for (const pt* d : {&w1, &w2})
+                for (int a = 0; a < nz; ++a)
+                    for (int b = a; b < nz; ++b)
+                        if (in_cone2(v, H.pts[zeros[a]], H.pts[zeros[b]], *d)) return true;
+            return false;
+        }
+        if (witnessed()) return true;
+        return exact();
+    }
+
+    // Not adjacent. Separating planes of H (exact for axis planes, rigorous for the rest).
+    for (std::size_t p = 1; p < H.num_planes; ++p) {
+        const hplane& h = H.planes[p];
+        if (h.k != hplane::kind::axis) continue;
+        if (side(h, T.v[0]) > 0 && side(h, T.v[1]) > 0 && side(h, T.v[2]) > 0) return false;
+    }
+    const auto separated = [&](const pt& d, double hmin, double hmax) {
+        double tmin = std::numeric_limits<double>::infinity(), tmax = -tmin;
+        for (int m = 0; m < 3; ++m) {
+            double err = 0;
+            const double val = dot_from(d, T.v[m], H.ref, err);
+            tmin = std::min(tmin, val - err);
+            tmax = std::max(tmax, val + err);
+        }
+        return tmin > hmax || tmax < hmin;
+    };
+    for (std::size_t a = 0; a < H.num_face_axes; ++a)
+        if (separated(H.face_axes[a].d, H.face_axes[a].hmin, H.face_axes[a].hmax)) return false;
+    const auto hull_range = [&](const pt& d, double& hmin, double& hmax) {
+        hmin = std::numeric_limits<double>::infinity(), hmax = -hmin;
+        for (const pt& x : H.pts) {
+            double err = 0;
+            const double val = dot_from(d, x, H.ref, err);
+            hmin = std::min(hmin, val - err);
+            hmax = std::max(hmax, val + err);
+        }
+    };
+    const pt e1{T.v[1][0] - T.v[0][0], T.v[1][1] - T.v[0][1], T.v[1][2] - T.v[0][2]};
+    const pt e2{T.v[2][0] - T.v[0][0], T.v[2][1] - T.v[0][1], T.v[2][2] - T.v[0][2]};
+    const pt e3{T.v[2][0] - T.v[1][0], T.v[2][1] - T.v[1][1], T.v[2][2] - T.v[1][2]};
+    const auto cross = [](const pt& x, const pt& y) {
+        return pt{x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]};
+    };
+    {
+        double hmin = 0, hmax = 0;
+        const pt nt = cross(e1, e2);
+        hull_range(nt, hmin, hmax);
+        if (separated(nt, hmin, hmax)) return false;
+    }
+    if (witnessed()) return true;
+    for (const pt* et : {&e1, &e2, &e3})
+        for (std::size_t d = 0; d < H.num_edge_dirs; ++d) {
+            const pt ax = cross(*et, H.edge_dirs[d]);
+            if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0) continue;
+            double hmin = 0, hmax = 0;
+            hull_range(ax, hmin, hmax);
+            if (separated(ax, hmin, hmax)) return false;
+        }
+    return exact();
+}
+
+/// Certificate of full occlusion by one triangle: its plane strictly separates the box corners
+/// from the facet vertices and each of the 24 corner–vertex segments meets it. By convexity
+/// (the crossing point of any sight line lies in the hull of those 24 crossings) it then
+/// blocks every sight line.
+inline bool blocks_every_sight_line(const sight_hull& H, const scene_triangle& T) {
+    std::array<int, 11> s{};
+    for (int p = 0; p < 11; ++p) s[p] = orient3(T.v[0], T.v[1], T.v[2], H.pts[p]);
+    const int box_side = s[0];
+    if (box_side == 0) return false;
+    for (int p = 1; p < 8; ++p)
+        if (s[p] != box_side) return false;
+    for (int p = 8; p < 11; ++p)
+        if (s[p] != -box_side) return false;
+    for (int c = 0; c < 8; ++c)
+        for (int q = 8; q < 11; ++q) {
+            const int o1 = orient3(H.pts[c], H.pts[q], T.v[0], T.v[1]);
+            const int o2 = orient3(H.pts[c], H.pts[q], T.v[1], T.v[2]);
+            const int o3 = orient3(H.pts[c], H.pts[q], T.v[2], T.v[0]);
+            if ((o1 > 0 || o2 > 0 || o3 > 0) && (o1 < 0 || o2 < 0 || o3 < 0)) return false;
+        }
+    return true;
+}
+
+/// CGAL traversal traits: prune nodes H cannot reach, stop at the first blocking triangle.
+struct hull_traversal {
+    const sight_hull& H;
+    const aabb_scene& scene;
+    std::size_t facet;
+    std::array<std::uint32_t, 3> fid;
+    aabb_trace& trace;
+    bool blocked = false;
+
+    bool go_further() const { return !blocked; }
+
+    template <class Primitive>
+    void intersection(const sight_hull&, const Primitive& prim) {
+        const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
+        if (idx == facet) return;
+        if (blocks(H, fid, idx < scene.part_faces, scene.tris[idx], trace)) {
+            blocked = true;
+            trace.blocker = idx;
+        }
+    }
+
+    template <class Node>
+    bool do_intersect(const sight_hull&, const Node& node) const {
+        const auto& b = node.bbox();
+        const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
+        for (int k = 0; k < 3; ++k)
+            if (hi[k] < H.lo[k] || lo[k] > H.hi[k]) return false;
+        // Entirely in the closed half-space behind the facet plane: nothing there blocks.
+        if (box_outside_closed(H.facet_plane(), lo, hi)) return false;
+        for (std::size_t p = 1; p < H.num_planes; ++p)
+            if (box_strictly_outside(H.planes[p], lo, hi)) return false;
+        return true;
+    }
+};
+
+}  // namespace detail::occ
+
+/// Fast certified occlusion policy (see the header comment). Copies are cheap and share the
+/// scene; every member is const and thread-safe.
+class aabb_occlusion {
+public:
+    /// What `explain` reports about one classification.
+    using trace = detail::occ::aabb_trace;
+
+    /// Validates `part` as a closed solid and builds the AABB tree; throws mesh_error.
+    explicit aabb_occlusion(const triangle_mesh& part) : aabb_occlusion(part, {}) {}
+
+    /// Part plus external occluders (each a closed solid; they may touch the part but must not
+    /// enclose the facet). Facet indices refer to `part`.
+    aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders) {
+        auto s = std::make_shared<detail::occ::aabb_scene>();
+        detail::occ::validate_solid(part, "aabb_occlusion: part");
+        for (std::size_t i = 0; i < occluders.size(); ++i)
+            detail::occ::validate_solid(occluders[i], "aabb_occlusion: occluder " + std::to_string(i));
+        s->part_faces = part.num_faces();
+        std::uint32_t offset = 0;
+        for (const triangle_mesh* m : meshes(part, occluders)) {
+            detail::occ::append_triangles(s->tris, *m, offset);
+            offset += static_cast<std::uint32_t>(m->num_vertices());
+        }
+        using P = detail::occ::epick::Point_3;
+        for (const auto& t : s->tris)
+            s->cgal_tris.emplace_back(P(t.v[0][0], t.v[0][1], t.v[0][2]),
+                                      P(t.v[1][0], t.v[1][1], t.v[1][2]),
+                                      P(t.v[2][0], t.v[2][1], t.v[2][2]));
+        s->tree.rebuild(s->cgal_tris.cbegin(), s->cgal_tris.cend());  // built now: const queries
+        scene_ = std::move(s);
+    }
+
+    /// Classifies every camera position of `box` against facet `facet` of the part. Throws
+    /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box).
+    template <Interval I>
+    visibility classify(const position_box<I>& box, std::size_t facet) const {
+        return classify(detail::occ::box_bounds(box, "aabb_occlusion"), facet);
+    }
+
+    /// The same on a box given by double bounds.
+    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet) const {
+        trace t;
+        return explain(box, facet, t);
+    }
+
+    /// `classify`, also reporting how the answer was reached (for tests and benchmarks).
+    visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info) const {
+        using namespace detail::occ;
+        info = trace{};
+        const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
+        if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+        const detail::round_to_nearest_scope nearest;  // the error bounds assume it
+        const scene_triangle& F = scene_->tris[facet];
+        const pt lo{b.min().x(), b.min().y(), b.min().z()};
+        const pt hi{b.max().x(), b.max().y(), b.max().z()};
+
+        // Which side of the facet plane is each corner on (exact)?
+        const hplane fp = facet_plane(F.v);
+        int behind = 0, front = 0;
+        for (int k = 0; k < 8; ++k) {
+            const pt c{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
+            const int s = side(fp, c);
+            behind += s > 0, front += s < 0;
+        }
+        if (behind == 8) return visibility::occluded;  // facing away: inside the part
+        if (front < 8) return visibility::partial;     // edge-on or behind for some positions
+
+        sight_hull H;
+        build_sight_hull(lo, hi, F.v, H);
+        hull_traversal tr{H, *scene_, facet, F.id, info};
+        scene_->tree.traversal(H, tr);
+        if (info.exact_clips) scene_->exact_clips.fetch_add(info.exact_clips, std::memory_order_relaxed);
+        if (!tr.blocked) return visibility::visible;
+        if (blocks_every_sight_line(H, scene_->tris[info.blocker])) return visibility::occluded;
+        return visibility::partial;
+    }
+
+    /// Number of exact rational fallbacks taken so far by all copies (diagnostics).
+    std::uint64_t exact_fallbacks() const noexcept {
+        return scene_->exact_clips.load(std::memory_order_relaxed);
+    }
+
+private:
+    static std::vector<const triangle_mesh*> meshes(const triangle_mesh& part,
+                                                    std::span<const triangle_mesh> occluders) {
+        std::vector<const triangle_mesh*> all{&part};
+        for (const auto& o : occluders) all.push_back(&o);
+        return all;
+    }
+
+    std::shared_ptr<const detail::occ::aabb_scene> scene_;
+};
+
+}  // namespace certipose

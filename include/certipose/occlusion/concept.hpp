@@ -1,0 +1,56 @@
+// certipose/occlusion/concept.hpp — the OcclusionPolicy concept: classify a camera position box
+// against one facet of the part (paper §6.3, DESIGN.md §3 constraint 6). No CGAL here: the
+// solver includes this header and must compile with `no_occlusion` and without CGAL.
+//
+// A policy is built once per scene — the part mesh plus optional external occluder meshes —
+// and caches whatever depends on the scene only (AABB tree, exact copies). `classify(box, f)`
+// then answers for every camera position p in the box and every point q of facet f:
+//   VISIBLE  — every sight line from p to q is free (certified);
+//   OCCLUDED — no sight line from the box reaches a point of f's relative interior (certified);
+//   PARTIAL  — anything else, or not decided: the paver bisects.
+// A sight line is blocked when its open segment (p, q) meets a scene triangle other than f, or
+// runs through the inside of a scene solid (the scene is a set of closed solids; the camera
+// cannot sit inside the part). See docs/occlusion.md for the exact rules of each policy.
+#pragma once
+
+#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/interval/concept.hpp>
+#include <certipose/pose/pose_box.hpp>
+
+#include <concepts>
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace certipose {
+
+/// What a position box sees of a facet (paper Algorithm 2's three outcomes).
+enum class visibility {
+    visible,   ///< every sight line from every box point to every facet point is free
+    partial,   ///< some free and some blocked, or undecided: bisect
+    occluded   ///< no free sight line from the box to the facet's relative interior
+};
+
+/// "visible", "partial" or "occluded" (tables, JSON, test messages).
+constexpr std::string_view to_string(visibility v) noexcept {
+    switch (v) {
+        case visibility::visible: return "visible";
+        case visibility::partial: return "partial";
+        case visibility::occluded: return "occluded";
+    }
+    return "?";
+}
+
+/// A policy built from the scene (`P(part)` or `P(part, occluders)`) whose const `classify`
+/// takes a position box over interval type `I` and a facet index of the part. Models say in
+/// their documentation whether one object may be shared by several threads (all of
+/// certipose's are).
+template <class P, class I>
+concept OcclusionPolicy =
+    Interval<I> && std::constructible_from<P, const triangle_mesh&> &&
+    std::constructible_from<P, const triangle_mesh&, std::span<const triangle_mesh>> &&
+    requires(const P& policy, const position_box<I>& box, std::size_t facet) {
+        { policy.classify(box, facet) } -> std::same_as<visibility>;
+    };
+
+}  // namespace certipose

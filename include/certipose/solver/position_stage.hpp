@@ -1,0 +1,90 @@
+// certipose/solver/position_stage.hpp — the position half of the paper's Algorithm 3
+// (lines 1–27): pave the position space of one facet with the position constraint set and an
+// occlusion policy.
+//
+// A position box is VALID when the constraint set certifies it *and* the occlusion policy says
+// VISIBLE; it is discarded when the set proves it violated or occlusion says OCCLUDED;
+// otherwise it is bisected (largest-first by default) down to ε_p and then kept as BOUNDARY.
+// Occlusion is only asked about boxes the constraints already certify: elsewhere the box is
+// bisected anyway, and the exact occlusion test is the expensive part.
+#pragma once
+
+#include <cstddef>
+#include <utility>
+
+#include "certipose/bisection/largest_first.hpp"
+#include "certipose/constraints/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/paver/paver.hpp"
+#include "certipose/solver/contraction.hpp"
+#include "certipose/solver/task.hpp"
+
+namespace certipose {
+
+namespace detail {
+
+/// A Contractor that forwards to a constraint set owned elsewhere (the stage's local set), so
+/// contractor policies can wrap it without copying the set.
+template <class Set>
+struct set_contractor {
+    Set* set;
+    template <class Box>
+    void contract(Box& box) { set->contract(box); }
+};
+
+/// The paver's inner test: constraint set first, then occlusion for certified boxes.
+template <class Set, class Occlusion>
+struct position_test {
+    Set* set;
+    const Occlusion* occlusion;
+    std::size_t facet;
+    std::size_t* occlusion_tests;
+
+    template <class Box>
+    verdict test(const Box& box) {
+        const verdict v = set->test(box);
+        if (v != verdict::satisfied) return v;
+        ++*occlusion_tests;
+        switch (occlusion->classify(box, facet)) {
+            case visibility::visible: return verdict::satisfied;
+            case visibility::occluded: return verdict::violated;
+            case visibility::partial: break;
+        }
+        return verdict::undecided;
+    }
+};
+
+}  // namespace detail
+
+/// Result of the position stage for one facet.
+template <Interval I>
+struct position_stage_result {
+    certipose::paving<position_box<I>> boxes;  ///< VALID, BOUNDARY (and pending) position boxes
+    position_box<I> initial_box;
+    std::size_t occlusion_tests = 0;
+};
+
+/// Paves the positions of one facet. `Set` models PositionConstraintSet over I; `Contraction`
+/// is a contractor policy (solver/contraction.hpp); `Bisector` is constructible from ε_p.
+template <Interval I, class Set, class Contraction = hc4_contraction, class Bisector = largest_first,
+          class Buffer = depth_first, class Occlusion>
+    requires PositionConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
+position_stage_result<I> pave_positions(const position_problem& problem, std::size_t facet_index,
+                                        const Occlusion& occlusion, const paver_options& options,
+                                        double position_eps, std::stop_token stop = {}) {
+    Set set(problem);
+    position_stage_result<I> out;
+    out.initial_box = set.initial_box();
+    auto contractor = Contraction::wrap(detail::set_contractor<Set>{&set});
+    detail::position_test<Set, Occlusion> test{&set, &occlusion, facet_index, &out.occlusion_tests};
+    paver<position_box<I>, decltype(contractor), decltype(test), Bisector, Buffer> p(
+        std::move(contractor), test, Bisector(position_eps), options);
+    if (is_empty(out.initial_box)) {
+        out.boxes.stats.reason = termination::completed;
+        return out;
+    }
+    out.boxes = p.run(out.initial_box, stop);
+    return out;
+}
+
+}  // namespace certipose

@@ -1,0 +1,185 @@
+// certipose/verify/point_check.hpp — an independent, plain-double check of one camera pose
+// against every constraint of DESIGN.md §3, with ray casting for occlusion.
+//
+// This is deliberately NOT the certified code path: no intervals, no contractors, no CGAL — a
+// second implementation written straight from DESIGN.md, so that sampling random poses inside
+// the boxes the solver calls VALID can catch a bug in the certified path (DESIGN.md §7). Being
+// plain double, it can misjudge poses within rounding distance of a constraint boundary; tests
+// sample inside VALID boxes, which the solver keeps away from boundaries by construction.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "certipose/geometry/triangle_mesh.hpp"
+
+namespace certipose::verify {
+
+/// One camera pose: position (metres) and ZXZ Euler angles (radians).
+struct pose {
+    Eigen::Vector3d position;
+    double phi = 0, gamma = 0, beta = 0;
+};
+
+/// The camera as the check needs it.
+struct camera_view {
+    Eigen::Matrix3d K;
+    double width_px, height_px;
+    double d_min, d_max;
+};
+
+/// Which constraints of DESIGN.md §3 a pose violates (all false: the pose is valid).
+struct violations {
+    bool on_facet = false, focus = false, backface = false, view_angle = false, fov = false, occluded = false;
+    bool any() const { return on_facet || focus || backface || view_angle || fov || occluded; }
+    bool any_position() const { return on_facet || focus || backface || view_angle || occluded; }
+    std::string describe() const {
+        std::string s;
+        const auto add = [&](bool b, const char* n) { if (b) s += (s.empty() ? "" : ", ") + std::string(n); };
+        add(on_facet, "on_facet"), add(focus, "focus"), add(backface, "backface");
+        add(view_angle, "view_angle"), add(fov, "fov"), add(occluded, "occluded");
+        return s.empty() ? "none" : s;
+    }
+};
+
+/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β), written out independently of pose/rotation.hpp.
+inline Eigen::Matrix3d zxz(double phi, double gamma, double beta) {
+    const auto rz = [](double a) {
+        Eigen::Matrix3d m;
+        m << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
+        return m;
+    };
+    Eigen::Matrix3d rx;
+    rx << 1, 0, 0, 0, std::cos(gamma), -std::sin(gamma), 0, std::sin(gamma), std::cos(gamma);
+    return rz(phi) * rx * rz(beta);
+}
+
+/// Distance from p to triangle (a, b, c) by projection and edge clamping.
+inline double point_triangle_distance(const Eigen::Vector3d& p, const std::array<Eigen::Vector3d, 3>& v) {
+    const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]).normalized();
+    const Eigen::Vector3d proj = p - n * n.dot(p - v[0]);
+    bool inside = true;
+    for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d e = v[(i + 1) % 3] - v[i];
+        if (n.dot(e.cross(proj - v[i])) < 0) inside = false;
+    }
+    if (inside) return std::abs(n.dot(p - v[0]));
+    double best = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d a = v[i], e = v[(i + 1) % 3] - v[i];
+        const double t = std::clamp(e.dot(p - a) / e.squaredNorm(), 0.0, 1.0);
+        best = std::min(best, (p - (a + t * e)).norm());
+    }
+    return best;
+}
+
+/// Möller–Trumbore: does the open segment (p, q) cross triangle t? Hits within `end_slack` of
+/// either end (in segment parameter) are ignored: the segment may touch the facet's own edges at
+/// q, where neighbours of the facet meet it (DESIGN.md §3.6).
+inline bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                  const std::array<Eigen::Vector3d, 3>& t, double end_slack = 1e-9) {
+    const Eigen::Vector3d d = q - p, e1 = t[1] - t[0], e2 = t[2] - t[0];
+    const Eigen::Vector3d h = d.cross(e2);
+    const double a = e1.dot(h);
+    if (std::abs(a) < 1e-300) return false;  // parallel (a grazing segment in the plane is ignored)
+    const double f = 1.0 / a;
+    const Eigen::Vector3d s = p - t[0];
+    const double u = f * s.dot(h);
+    if (u < 0.0 || u > 1.0) return false;
+    const Eigen::Vector3d qv = s.cross(e1);
+    const double v = f * d.dot(qv);
+    if (v < 0.0 || u + v > 1.0) return false;
+    const double tt = f * e2.dot(qv);
+    return tt > end_slack && tt < 1.0 - end_slack;
+}
+
+/// Scene triangles other than the facet of interest, for ray casting.
+struct occluders {
+    std::vector<std::array<Eigen::Vector3d, 3>> triangles;
+
+    /// All faces of `part` except `facet_index`, plus every face of each extra mesh.
+    static occluders of(const triangle_mesh& part, std::size_t facet_index,
+                        std::span<const triangle_mesh> extra = {}) {
+        occluders o;
+        for (std::size_t i = 0; i < part.num_faces(); ++i)
+            if (i != facet_index) o.triangles.push_back(part.facet(i).v);
+        for (const auto& m : extra)
+            for (std::size_t i = 0; i < m.num_faces(); ++i) o.triangles.push_back(m.facet(i).v);
+        return o;
+    }
+    /// Only the triangles whose bounding box meets `region` (a cheap pre-filter for a batch of
+    /// segments that all lie inside `region`).
+    occluders within(const Eigen::AlignedBox3d& region) const {
+        occluders o;
+        for (const auto& t : triangles) {
+            Eigen::AlignedBox3d b(t[0]);
+            b.extend(t[1]), b.extend(t[2]);
+            if (b.intersects(region)) o.triangles.push_back(t);
+        }
+        return o;
+    }
+    bool blocks(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+        for (const auto& t : triangles)
+            if (segment_hits_triangle(p, q, t)) return true;
+        return false;
+    }
+};
+
+/// Points of the facet used as sight-line targets: the vertices, edge midpoints, the centroid,
+/// and `extra` caller-chosen barycentric samples.
+inline std::vector<Eigen::Vector3d> facet_targets(const facet& f, std::span<const Eigen::Vector3d> extra_barycentric = {}) {
+    std::vector<Eigen::Vector3d> pts{f.v[0], f.v[1], f.v[2], (f.v[0] + f.v[1]) / 2, (f.v[1] + f.v[2]) / 2,
+                                     (f.v[2] + f.v[0]) / 2, f.centroid};
+    for (const auto& b : extra_barycentric) pts.push_back(b[0] * f.v[0] + b[1] * f.v[1] + b[2] * f.v[2]);
+    return pts;
+}
+
+/// Checks the position constraints (1–4 and, if `scene` is given, 6) of DESIGN.md §3 at p.
+inline violations check_position(const Eigen::Vector3d& p, const facet& f, double d_min, double d_max,
+                                 double min_view_angle, const occluders* scene = nullptr,
+                                 std::span<const Eigen::Vector3d> targets = {}) {
+    violations r;
+    const double dist = point_triangle_distance(p, f.v);
+    r.on_facet = !(dist > 0.0);
+    double far = 0;
+    for (const auto& v : f.v) far = std::max(far, (p - v).norm());
+    r.focus = dist < d_min || far > d_max;
+    r.backface = !((p - f.v[0]).dot(f.normal) > 0.0);
+    r.view_angle = (p - f.centroid).dot(f.normal) < std::sin(min_view_angle) * (p - f.centroid).norm();
+    if (scene)
+        for (const auto& q : targets)
+            if (scene->blocks(p, q)) {
+                r.occluded = true;
+                break;
+            }
+    return r;
+}
+
+/// Constraint 5 of DESIGN.md §3: every vertex in front of the camera and inside the image.
+inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam) {
+    const Eigen::Matrix3d R = zxz(x.phi, x.gamma, x.beta);
+    for (const auto& v : f.v) {
+        const Eigen::Vector3d qc = R.transpose() * (v - x.position);
+        if (!(qc.z() > 0.0)) return false;
+        const Eigen::Vector3d uvw = cam.K * qc;
+        const double u = uvw.x() / uvw.z(), w = uvw.y() / uvw.z();
+        if (u < 0.0 || u > cam.width_px || w < 0.0 || w > cam.height_px) return false;
+    }
+    return true;
+}
+
+/// Every constraint of DESIGN.md §3 at one pose.
+inline violations check_pose(const pose& x, const facet& f, const camera_view& cam, double min_view_angle,
+                             const occluders* scene = nullptr, std::span<const Eigen::Vector3d> targets = {}) {
+    violations r = check_position(x.position, f, cam.d_min, cam.d_max, min_view_angle, scene, targets);
+    r.fov = !fov_ok(x, f, cam);
+    return r;
+}
+
+}  // namespace certipose::verify
