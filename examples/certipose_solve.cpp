@@ -1,0 +1,140 @@
+// certipose-solve — certified camera pose boxes for one facet of a part (DESIGN.md §6).
+//
+//   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
+//                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
+//                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
+//                   [--time-limit SECONDS] [--quiet]
+//
+// Reads the mesh and the camera/task JSON, solves, writes the result JSON (and the PLY)
+// atomically. Every error prints one line "certipose-solve: ..." on stderr; exit codes:
+// 0 success, 1 bad input file / solver / write error, 2 bad command line (docs/io.md).
+//
+// The pipeline is `certipose::pose_solver` with the defaults (Boost intervals, the paper's
+// constraints with HC4, largest-first, the paper's orientation) and the occlusion policy chosen
+// on the command line; progress goes to stderr when it is a terminal.
+#include "certipose_solve_cli.hpp"
+
+#include <certipose/error.hpp>
+#include <certipose/interval/boost_interval.hpp>
+#include <certipose/io/json.hpp>
+#include <certipose/io/ply.hpp>
+#include <certipose/io/read_mesh.hpp>
+#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
+#include <certipose/occlusion/cgal_boolean_occlusion.hpp>
+#include <certipose/occlusion/no_occlusion.hpp>
+#include <certipose/solver/pose_solver.hpp>
+#include <certipose/solver/result.hpp>
+#include <certipose/solver/task.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <variant>
+
+#include <unistd.h>
+
+namespace {
+
+using I = certipose::boost_interval;
+
+/// Progress on one stderr line, rewritten in place (only when stderr is a terminal).
+std::function<bool(const certipose::solve_progress&)> progress_printer(bool quiet) {
+    if (quiet || !::isatty(STDERR_FILENO)) return {};
+    return [](const certipose::solve_progress& p) {
+        std::fprintf(stderr, "\r%-11s %8zu boxes  %8zu pending  %6zu valid  %6.2f s", p.stage, p.boxes_done,
+                     p.boxes_pending, p.valid, p.seconds);
+        return true;
+    };
+}
+
+template <class Occlusion, class Camera>
+certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const Camera& camera,
+                                      const certipose::inspection_task& task, std::size_t facet,
+                                      const certipose::solve_options& options) {
+    using solver = certipose::pose_solver<I, Camera, certipose::paper_position_constraints, certipose::hc4_contraction,
+                                          certipose::largest_first, Occlusion>;
+    return solver(mesh, camera, task).solve(facet, options);
+}
+
+template <class Camera>
+certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const Camera& camera,
+                                 const certipose::inspection_task& task, const certipose_solve::arguments& args,
+                                 certipose::solve_options options) {
+    options.progress = progress_printer(args.quiet);
+    certipose::solve_result<I> r;
+    switch (args.occlusion) {
+        case certipose_solve::occlusion_mode::aabb:
+            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options);
+            break;
+        case certipose_solve::occlusion_mode::boolean:
+            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options);
+            break;
+        case certipose_solve::occlusion_mode::none:
+            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options);
+            break;
+    }
+    if (options.progress) std::fputc('\n', stderr);
+    return r;
+}
+
+/// One line per error, whatever the message holds.
+int report(const std::string& message) {
+    std::cerr << "certipose-solve: " << certipose_solve::detail::one_line(message) << "\n";
+    return certipose_solve::exit_failure;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const certipose_solve::parse_outcome parsed =
+        certipose_solve::parse_arguments(argc, argv, std::cout, std::cerr);
+    if (!parsed.args) return parsed.exit_code;
+    const certipose_solve::arguments& args = *parsed.args;
+
+    try {
+        const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+        (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
+        const certipose::camera_task input = certipose::read_camera_task(args.camera);
+
+        certipose::solve_options options;
+        options.position_eps = args.position_eps;
+        options.orientation_eps = args.orientation_eps;
+        if (args.max_boxes) options.max_boxes = *args.max_boxes;
+        if (args.time_limit_seconds)
+            options.time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                std::chrono::duration<double>(*args.time_limit_seconds));
+        options.validate();
+
+        const auto result = std::visit(
+            [&](const auto& camera) { return solve(mesh, camera, input.task, args, options); }, input.camera);
+
+        const certipose::result_document document =
+            certipose::make_result_document(result, mesh, input.camera, input.task, options);
+        nlohmann::ordered_json json = certipose::result_to_json(document);
+        json["settings"]["occlusion"] = certipose_solve::to_string(args.occlusion);  // extra field
+        certipose::write_json_file(args.out, json);
+        if (args.ply) certipose::write_ply(*args.ply, mesh, document);
+
+        if (!args.quiet) {
+            const auto& st = document.stats;
+            std::printf("facet %zu of %s (%zu faces): %zu valid, %zu boundary boxes in %.3f s\n", args.facet,
+                        args.mesh.string().c_str(), mesh.num_faces(), st.valid, st.boundary, st.seconds);
+            std::printf("  position stage    %8.3f s  (%zu valid / %zu boundary position boxes, %zu occlusion tests)\n",
+                        st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests);
+            std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
+                        st.orientation_certifications);
+            if (st.reason != certipose::termination::completed)
+                std::printf("  stopped early: %s (unfinished boxes are reported as boundary)\n",
+                            certipose::to_string(st.reason));
+            std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply ? " and " : "",
+                        args.ply ? args.ply->string().c_str() : "");
+        }
+        return certipose_solve::exit_ok;
+    } catch (const certipose::error& e) {
+        return report(e.what());
+    } catch (const std::exception& e) {  // bad_alloc, filesystem errors, ...
+        return report(std::string("unexpected error: ") + e.what());
+    }
+}

@@ -1,0 +1,222 @@
+// examples/certipose_solve_cli.hpp — the command line of `certipose-solve` (CLI11).
+//
+// Usage (docs/io.md):
+//   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
+//                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
+//                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
+//                   [--time-limit SECONDS] [--quiet]
+// `parse_arguments` turns argv into `arguments` or into an exit code. Every mistake — unknown
+// or missing option, malformed number, non-positive threshold, missing input file, output
+// directory that does not exist — prints ONE line "certipose-solve: error: ..." on `err` and
+// gives exit code 2 (usage error), before any work is done; --help prints the usage on `out`
+// and gives 0. Numbers are parsed with std::from_chars, so "1e-1" works and "0.1abc", "nan",
+// "-1" or "0x10" do not slip through. Not a library header: it is shared by the program and
+// its tests only.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace certipose_solve {
+
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_failure = 1;  ///< bad input file, solver or write error
+inline constexpr int exit_usage = 2;    ///< bad command line
+
+enum class occlusion_mode { aabb, boolean, none };
+
+inline const char* to_string(occlusion_mode m) noexcept {
+    switch (m) {
+        case occlusion_mode::aabb: return "aabb";
+        case occlusion_mode::boolean: return "boolean";
+        case occlusion_mode::none: return "none";
+    }
+    return "?";
+}
+
+/// The validated command line.
+struct arguments {
+    std::filesystem::path mesh;    ///< --mesh: OFF, OBJ, PLY or STL
+    std::size_t facet = 0;         ///< --facet: face index in file order
+    std::filesystem::path camera;  ///< --camera: camera/task JSON (DESIGN.md §6)
+    double position_eps = 0.1;     ///< --position-eps, metres
+    double orientation_eps = 0.38; ///< --orientation-eps, radians
+    std::filesystem::path out;     ///< --out: result JSON
+    std::optional<std::filesystem::path> ply;           ///< --ply: boxes for MeshLab/ParaView
+    occlusion_mode occlusion = occlusion_mode::aabb;    ///< --occlusion
+    double scale = 1.0;            ///< --scale: mesh coordinates × S (e.g. 0.001 for mm)
+    std::optional<std::size_t> max_boxes;               ///< --max-boxes budget
+    std::optional<double> time_limit_seconds;           ///< --time-limit budget
+    bool quiet = false;            ///< --quiet: no summary, no progress
+};
+
+/// `args` set: run with them. Unset: exit with `exit_code` (0 after --help).
+struct parse_outcome {
+    std::optional<arguments> args;
+    int exit_code = exit_ok;
+};
+
+namespace detail {
+
+/// Thrown by the checks below; becomes the one error line.
+struct usage_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+inline double parse_double(const std::string& option, const std::string& text, const char* what) {
+    double v = 0.0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc{} || end != last || text.empty())
+        throw usage_error(option + ": expected " + what + ", got '" + text + "'");
+    if (!(v > 0.0) || !std::isfinite(v))
+        throw usage_error(option + ": must be " + what + ", got " + text);
+    return v;
+}
+
+inline std::size_t parse_count(const std::string& option, const std::string& text,
+                               std::size_t min) {
+    std::size_t v = 0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, v);  // decimal digits only, no sign
+    if (ec == std::errc::result_out_of_range)
+        throw usage_error(option + ": " + text + " is too large");
+    if (ec != std::errc{} || end != last || text.empty())
+        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got '" +
+                          text + "'");
+    if (v < min)
+        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got " +
+                          text);
+    return v;
+}
+
+/// The file will be written at the end of a possibly long run: fail now if it cannot be.
+inline void check_output(const std::string& option, const std::filesystem::path& p) {
+    std::error_code ec;
+    if (!p.has_filename()) throw usage_error(option + ": not a file name: '" + p.string() + "'");
+    if (std::filesystem::is_directory(p, ec))
+        throw usage_error(option + ": " + p.string() + " is a directory");
+    const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+    if (!std::filesystem::is_directory(dir, ec))
+        throw usage_error(option + ": directory does not exist: " + dir.string());
+}
+
+inline std::string one_line(std::string s) {
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    return s;
+}
+
+}  // namespace detail
+
+/// Parses the command line (see the header comment). Writes only the --help text to `out` and
+/// only one error line to `err`.
+inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ostream& out,
+                                     std::ostream& err) {
+    CLI::App app{"certipose-solve: certified camera pose boxes from which a facet of a part can "
+                 "be inspected (paper: Parrott, Pickard, Dubay 2023). Writes the result JSON of "
+                 "DESIGN.md section 6 and optionally a PLY of the boxes.",
+                 "certipose-solve"};
+    std::string mesh, camera, output, ply, facet, position_eps, orientation_eps, scale,
+        max_boxes, time_limit, occlusion = "aabb";
+    bool quiet = false;
+    app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")
+        ->type_name("PART")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("--facet", facet, "index of the facet of interest (file order, from 0)")
+        ->type_name("N")
+        ->required();
+    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")
+        ->type_name("CAMERA.json")
+        ->required()
+        ->check(CLI::ExistingFile);
+    app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")
+        ->type_name("METRES")
+        ->required();
+    app.add_option("--orientation-eps", orientation_eps,
+                   "orientation threshold, radians (paper: 0.38)")
+        ->type_name("RADIANS")
+        ->required();
+    app.add_option("--out", output, "result JSON to write (atomically)")
+        ->type_name("RESULT.json")
+        ->required();
+    app.add_option("--ply", ply, "also write the part, facet and boxes as a coloured PLY")
+        ->type_name("BOXES.ply");
+    app.add_option("--occlusion", occlusion, "occlusion test: aabb (default), boolean or none")
+        ->type_name("MODE")
+        ->check(CLI::IsMember({"aabb", "boolean", "none"}));
+    app.add_option("--scale", scale, "multiply mesh coordinates by S (e.g. 0.001 for mm)")
+        ->type_name("S");
+    app.add_option("--max-boxes", max_boxes, "stop after N boxes (result marked box_budget)")
+        ->type_name("N");
+    app.add_option("--time-limit", time_limit, "stop after SECONDS (result marked deadline)")
+        ->type_name("SECONDS");
+    app.add_flag("--quiet,-q", quiet, "print nothing but errors");
+
+    const auto fail = [&](const std::string& message) {
+        err << "certipose-solve: error: " << detail::one_line(message)
+            << " (run with --help for usage)\n";
+        return parse_outcome{std::nullopt, exit_usage};
+    };
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        out << app.help();
+        return {std::nullopt, exit_ok};
+    } catch (const CLI::CallForAllHelp&) {
+        out << app.help();
+        return {std::nullopt, exit_ok};
+    } catch (const CLI::ParseError& e) {
+        return fail(e.what());
+    }
+
+    try {
+        arguments a;
+        a.mesh = mesh;
+        a.camera = camera;
+        a.facet = detail::parse_count("--facet", facet, 0);
+        a.position_eps = detail::parse_double("--position-eps", position_eps,
+                                              "a positive finite number of metres");
+        a.orientation_eps = detail::parse_double("--orientation-eps", orientation_eps,
+                                                 "a positive finite number of radians");
+        a.out = output;
+        detail::check_output("--out", a.out);
+        if (!ply.empty()) {
+            a.ply = ply;
+            detail::check_output("--ply", *a.ply);
+            std::error_code ec_ply, ec_out;
+            const auto ply_full = std::filesystem::weakly_canonical(*a.ply, ec_ply);
+            const auto out_full = std::filesystem::weakly_canonical(a.out, ec_out);
+            if (*a.ply == a.out || (!ec_ply && !ec_out && ply_full == out_full))
+                throw detail::usage_error("--ply: must differ from --out (" + ply + ")");
+        }
+        a.occlusion = occlusion == "boolean" ? occlusion_mode::boolean
+                      : occlusion == "none"  ? occlusion_mode::none
+                                             : occlusion_mode::aabb;
+        if (!scale.empty())
+            a.scale = detail::parse_double("--scale", scale, "a positive finite factor");
+        if (!max_boxes.empty()) a.max_boxes = detail::parse_count("--max-boxes", max_boxes, 1);
+        if (!time_limit.empty())
+            a.time_limit_seconds =
+                detail::parse_double("--time-limit", time_limit, "a positive finite number of seconds");
+        a.quiet = quiet;
+        return {std::move(a), exit_ok};
+    } catch (const detail::usage_error& e) {
+        return fail(e.what());
+    }
+}
+
+}  // namespace certipose_solve

@@ -1,0 +1,698 @@
+// certipose/io/json.hpp — the JSON files of DESIGN.md §6: the camera/task input and the result.
+//
+// Needs nlohmann-json (Debian nlohmann-json3-dev, CMake target nlohmann_json::nlohmann_json);
+// no other certipose header includes it, so the core stays free of it. No CGAL.
+//
+// Input (`read_camera_task`): a strict reader. The document is a contract typed by hand, so
+// every mistake is an error that names the field by its JSON path — unknown field (a typo such
+// as "camera.focal_lenght"), duplicate field, wrong type, missing required field — thrown as
+// certipose::invalid_argument whose field() is that path; a value the camera or the task
+// rejects (negative focal length, ...) is the camera's own invalid_argument re-thrown with the
+// path ("camera.focal_length"); bad JSON syntax is certipose::io_error with nlohmann's line and
+// column. Output (`write_result_json`): the result JSON of DESIGN.md §6, written atomically,
+// doubles in round-trip precision (nlohmann's shortest-round-trip formatting), one box per
+// line. Its reader (`read_result_json`) returns plain doubles and, since the contract allows
+// extra fields, ignores fields it does not know. Field-by-field description: docs/io.md.
+// Every entry point switches to round-to-nearest for its duration: glibc's strtod (behind
+// nlohmann's parser) honours the FPU rounding mode, so text read while a rounding_guard holds the
+// mode upward came back as a different double (measured: 1/3 and 0.123456789 did not survive).
+#pragma once
+
+#include <certipose/camera.hpp>
+#include <certipose/error.hpp>
+#include <certipose/interval/detail/fenv.hpp>
+#include <certipose/io/result_document.hpp>
+#include <certipose/io/write_file.hpp>
+#include <certipose/solver/result.hpp>
+#include <certipose/solver/task.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace certipose {
+
+/// A camera read from JSON: the model is chosen by the file ("model": "thin_lens" | "pinhole").
+using any_camera = std::variant<thin_lens_camera, pinhole_camera>;
+
+/// The camera/task input JSON of DESIGN.md §6.
+struct camera_task {
+    any_camera camera;
+    inspection_task task;
+};
+
+namespace detail::json_io {
+
+using json = nlohmann::json;
+using ordered_json = nlohmann::ordered_json;
+
+// ---- paths and messages ---------------------------------------------------------------------
+
+inline std::string child(const std::string& path, std::string_view key) {
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+inline std::string element(const std::string& path, std::size_t i) {
+    return path + "[" + std::to_string(i) + "]";
+}
+
+/// Control characters (a key may contain a newline) would break the "one line" error rule.
+inline std::string printable(std::string s) {
+    for (char& c : s)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return s;
+}
+
+[[noreturn]] inline void fail(const std::string& path, const std::string& msg) {
+    throw invalid_argument(path, printable((path.empty() ? std::string("(top level)") : path) +
+                                           ": " + msg));
+}
+
+/// "string \"0.012\"", "number 5", "null", "array of 3", "object" — for "expected X, got Y".
+inline std::string describe(const json& j) {
+    if (j.is_object()) return "an object";
+    if (j.is_array()) return "an array of " + std::to_string(j.size());
+    std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    if (j.is_null()) return "null";
+    return std::string(j.is_string() ? "string " : j.is_boolean() ? "boolean " : "number ") + text;
+}
+
+inline std::string join(std::initializer_list<std::string_view> names) {
+    std::string s;
+    for (auto n : names) s += (s.empty() ? "" : ", ") + std::string(n);
+    return s;
+}
+
+// ---- typed access ---------------------------------------------------------------------------
+
+inline const json& require_object(const json& j, const std::string& path) {
+    if (!j.is_object()) fail(path, "expected an object, got " + describe(j));
+    return j;
+}
+
+inline void reject_unknown(const json& obj, const std::string& path,
+                           std::initializer_list<std::string_view> allowed, std::string_view what) {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+        if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end())
+            fail(child(path, it.key()),
+                 "unknown field (" + std::string(what) + " fields: " + join(allowed) + ")");
+}
+
+inline const json* find(const json& obj, std::string_view key) {
+    const auto it = obj.find(std::string(key));
+    return it == obj.end() ? nullptr : &*it;
+}
+
+inline const json& require(const json& obj, const std::string& path, std::string_view key,
+                           std::string_view expected) {
+    const json* v = find(obj, key);
+    if (!v) fail(child(path, key), "missing required field (" + std::string(expected) + ")");
+    return *v;
+}
+
+inline double as_number(const json& j, const std::string& path) {
+    if (!j.is_number()) fail(path, "expected a number, got " + describe(j));
+    return j.get<double>();
+}
+
+inline double required_number(const json& obj, const std::string& path, std::string_view key) {
+    return as_number(require(obj, path, key, "a number"), child(path, key));
+}
+
+/// Absent or null: std::nullopt.
+inline std::optional<double> optional_number(const json& obj, const std::string& path,
+                                             std::string_view key) {
+    const json* v = find(obj, key);
+    if (!v || v->is_null()) return std::nullopt;
+    return as_number(*v, child(path, key));
+}
+
+inline std::size_t as_count(const json& j, const std::string& path) {
+    if (!j.is_number_unsigned()) {
+        if (j.is_number_integer() && j.get<std::int64_t>() >= 0) return j.get<std::size_t>();
+        fail(path, "expected a non-negative integer, got " + describe(j));
+    }
+    return j.get<std::size_t>();
+}
+
+inline std::string as_string(const json& j, const std::string& path, std::string_view expected) {
+    if (!j.is_string()) fail(path, "expected " + std::string(expected) + ", got " + describe(j));
+    return j.get<std::string>();
+}
+
+/// An array of exactly N numbers.
+template <std::size_t N>
+std::array<double, N> as_numbers(const json& j, const std::string& path) {
+    if (!j.is_array() || j.size() != N)
+        fail(path, "expected an array of " + std::to_string(N) + " numbers, got " + describe(j));
+    std::array<double, N> a{};
+    for (std::size_t i = 0; i < N; ++i) a[i] = as_number(j[i], element(path, i));
+    return a;
+}
+
+/// An array of exactly R arrays of exactly C numbers.
+template <std::size_t R, std::size_t C>
+std::array<std::array<double, C>, R> as_matrix(const json& j, const std::string& path) {
+    if (!j.is_array() || j.size() != R)
+        fail(path, "expected an array of " + std::to_string(R) + " arrays of " +
+                       std::to_string(C) + " numbers, got " + describe(j));
+    std::array<std::array<double, C>, R> m{};
+    for (std::size_t i = 0; i < R; ++i) m[i] = as_numbers<C>(j[i], element(path, i));
+    return m;
+}
+
+// ---- parsing ----------------------------------------------------------------------------------
+
+inline std::string strip_nlohmann_prefix(std::string what) {
+    // "[json.exception.parse_error.101] parse error at line 2, column 7: ..." → "parse error ..."
+    if (!what.empty() && what.front() == '[')
+        if (const auto close = what.find("] "); close != std::string::npos) what.erase(0, close + 2);
+    return what;
+}
+
+/// Parses `text` as strict JSON (no comments). Duplicate keys — which nlohmann would silently
+/// resolve to the last one — are an invalid_argument naming the path; syntax errors are an
+/// io_error(source) with line and column.
+inline json parse(std::string_view text, const std::string& source) {
+    struct frame {
+        bool array;
+        std::set<std::string> keys{};
+        std::string key{};
+        std::size_t index = 0;
+    };
+    std::vector<frame> frames;
+    const auto path_of = [&frames] {
+        std::string p;
+        for (const frame& f : frames) p = f.array ? element(p, f.index) : child(p, f.key);
+        return p;
+    };
+    const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start: frames.push_back({false}); break;
+            case json::parse_event_t::array_start: frames.push_back({true}); break;
+            case json::parse_event_t::key: {
+                frame& f = frames.back();
+                f.key = parsed.get<std::string>();
+                if (!f.keys.insert(f.key).second) fail(path_of(), "duplicate field");
+                break;
+            }
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                frames.pop_back();
+                [[fallthrough]];
+            case json::parse_event_t::value:
+                if (!frames.empty() && frames.back().array) ++frames.back().index;
+                break;
+        }
+        return true;
+    };
+    const std::string prefix = source.empty() ? std::string() : source + ": ";
+    const certipose::detail::round_to_nearest_scope nearest;  // strtod honours the mode
+    try {
+        return json::parse(text.begin(), text.end(), callback, /*allow_exceptions=*/true,
+                           /*ignore_comments=*/false);
+    } catch (const json::exception& e) {  // parse_error (syntax), out_of_range (1e999)
+        throw io_error(source, printable(prefix + "invalid JSON: " + strip_nlohmann_prefix(e.what())));
+    }
+}
+
+inline std::string read_text_file(const std::filesystem::path& path, std::string_view who) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw io_error(name, std::string(who) + ": " + name + " is a directory, not a file");
+    if (!std::filesystem::exists(path, ec))
+        throw io_error(name, std::string(who) + ": no such file: " + name);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw io_error(name, std::string(who) + ": cannot open " + name);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad()) throw io_error(name, std::string(who) + ": cannot read " + name);
+    return text;
+}
+
+/// Runs `f` and prefixes the message of any invalid_argument with the file name, keeping the
+/// JSON path in field(): "camera.json: camera.focal_lenght: unknown field (...)".
+template <class F>
+auto with_source(const std::string& source, F&& f) {
+    try {
+        return f();
+    } catch (const invalid_argument& e) {
+        if (source.empty()) throw;
+        throw invalid_argument(e.field(), source + ": " + e.what());
+    }
+}
+
+/// Builds a camera (or validates a task) and re-throws its invalid_argument with the JSON path.
+template <class F>
+auto checked_by_model(const std::string& path, F&& f) {
+    try {
+        return f();
+    } catch (const invalid_argument& e) {
+        const std::string field = child(path, e.field());
+        throw invalid_argument(field, field + ": " + e.what());
+    }
+}
+
+// ---- writing ----------------------------------------------------------------------------------
+
+inline ordered_json finite(double v, const std::string& path) {
+    if (!std::isfinite(v))
+        throw invalid_argument(path, path + ": cannot be written to JSON, it is not finite (" +
+                                         detail::camera::format_value(v) + ")");
+    return v;
+}
+
+/// An integral double (image sizes) as a JSON integer, as in DESIGN.md §6; others as doubles.
+inline ordered_json integral_or_double(double v, const std::string& path) {
+    if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9007199254740992.0)
+        return static_cast<std::int64_t>(v);
+    return finite(v, path);
+}
+
+/// +inf (an unbounded range) is written as null; other non-finite values are an error.
+inline ordered_json finite_or_unbounded(double v, const std::string& path) {
+    if (v == std::numeric_limits<double>::infinity()) return nullptr;
+    return finite(v, path);
+}
+
+template <std::size_t N>
+ordered_json numbers(const std::array<double, N>& a, const std::string& path) {
+    ordered_json j = ordered_json::array();
+    for (std::size_t i = 0; i < N; ++i) j.push_back(finite(a[i], element(path, i)));
+    return j;
+}
+
+template <std::size_t R, std::size_t C>
+ordered_json matrix(const std::array<std::array<double, C>, R>& m, const std::string& path) {
+    ordered_json j = ordered_json::array();
+    for (std::size_t i = 0; i < R; ++i) j.push_back(numbers(m[i], element(path, i)));
+    return j;
+}
+
+inline ordered_json bounds(const bounds_3d& b, const std::string& path) {
+    ordered_json j = matrix(b, path);  // rejects NaN (an empty interval) and infinities first
+    for (std::size_t i = 0; i < 3; ++i)
+        if (b[i][0] > b[i][1])
+            throw invalid_argument(element(path, i),
+                                   element(path, i) + ": lower bound above upper bound (" +
+                                       detail::camera::format_value(b[i][0]) + " > " +
+                                       detail::camera::format_value(b[i][1]) + ")");
+    return j;
+}
+
+inline void check_bounds(const bounds_3d& b, const std::string& path) {
+    for (std::size_t i = 0; i < 3; ++i)
+        if (!(b[i][0] <= b[i][1]))
+            fail(element(path, i), "lower bound " + detail::camera::format_value(b[i][0]) +
+                                       " is above upper bound " +
+                                       detail::camera::format_value(b[i][1]));
+}
+
+inline std::optional<termination> termination_from_string(std::string_view s) {
+    for (termination t : {termination::completed, termination::box_budget, termination::deadline,
+                          termination::cancelled})
+        if (s == to_string(t)) return t;
+    return std::nullopt;
+}
+
+}  // namespace detail::json_io
+
+// ==== camera/task input ========================================================================
+
+/// The "camera" object of the input JSON (DESIGN.md §6; all fields in docs/io.md). `path` is
+/// the JSON path used in error messages.
+inline any_camera camera_from_json(const nlohmann::json& j, const std::string& path = "camera") {
+    using namespace detail::json_io;
+    const certipose::detail::round_to_nearest_scope nearest;
+    require_object(j, path);
+    const std::string model =
+        as_string(require(j, path, "model", "\"thin_lens\" or \"pinhole\""), child(path, "model"),
+                  "a string (\"thin_lens\" or \"pinhole\")");
+    // Optional fields mirror the C++ defaults; null means "use the default" too.
+    const auto principal_point = [&]() -> std::optional<Eigen::Vector2d> {
+        const json* v = find(j, "principal_point_px");
+        if (!v || v->is_null()) return std::nullopt;
+        const auto a = as_numbers<2>(*v, child(path, "principal_point_px"));
+        return Eigen::Vector2d(a[0], a[1]);
+    };
+    if (model == "thin_lens") {
+        reject_unknown(j, path,
+                       {"model", "focal_length", "f_stop", "focus_distance", "max_blur_circle",
+                        "pixel_pitch", "width_px", "height_px", "principal_point_px", "skew",
+                        "aspect"},
+                       "thin_lens camera");
+        thin_lens_parameters p;
+        p.focal_length = required_number(j, path, "focal_length");
+        p.f_stop = required_number(j, path, "f_stop");
+        p.focus_distance = required_number(j, path, "focus_distance");
+        p.max_blur_circle = required_number(j, path, "max_blur_circle");
+        p.pixel_pitch = required_number(j, path, "pixel_pitch");
+        p.width_px = required_number(j, path, "width_px");
+        p.height_px = required_number(j, path, "height_px");
+        p.principal_point_px = principal_point();
+        p.skew = optional_number(j, path, "skew").value_or(0.0);
+        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+        return checked_by_model(path, [&] { return any_camera(thin_lens_camera(p)); });
+    }
+    if (model == "pinhole") {
+        reject_unknown(j, path,
+                       {"model", "focal_length", "pixel_pitch", "width_px", "height_px",
+                        "principal_point_px", "skew", "aspect", "d_min", "d_max"},
+                       "pinhole camera");
+        pinhole_parameters p;
+        p.focal_length = required_number(j, path, "focal_length");
+        p.pixel_pitch = required_number(j, path, "pixel_pitch");
+        p.width_px = required_number(j, path, "width_px");
+        p.height_px = required_number(j, path, "height_px");
+        p.principal_point_px = principal_point();
+        p.skew = optional_number(j, path, "skew").value_or(0.0);
+        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+        // A pinhole has no depth of field, so the working distances must be stated; d_max may
+        // be null for "unbounded" (JSON has no infinity).
+        p.d_min = required_number(j, path, "d_min");
+        const json& d_max = require(j, path, "d_max", "a number, or null for unbounded");
+        p.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity()
+                                  : as_number(d_max, child(path, "d_max"));
+        return checked_by_model(path, [&] { return any_camera(pinhole_camera(p)); });
+    }
+    fail(child(path, "model"),
+         "unknown camera model \"" + model + "\" (expected \"thin_lens\" or \"pinhole\")");
+}
+
+/// The "task" object of the input JSON.
+inline inspection_task task_from_json(const nlohmann::json& j, const std::string& path = "task") {
+    using namespace detail::json_io;
+    const certipose::detail::round_to_nearest_scope nearest;
+    require_object(j, path);
+    reject_unknown(j, path, {"min_view_angle", "max_metres_per_pixel"}, "task");
+    inspection_task t;
+    t.min_view_angle = required_number(j, path, "min_view_angle");
+    t.max_metres_per_pixel = optional_number(j, path, "max_metres_per_pixel");
+    checked_by_model(path, [&] {
+        t.validate();
+        return 0;
+    });
+    return t;
+}
+
+/// The whole input document {"camera": {...}, "task": {...}}; both members are required.
+inline camera_task camera_task_from_json(const nlohmann::json& j) {
+    using namespace detail::json_io;
+    require_object(j, "");
+    reject_unknown(j, "", {"camera", "task"}, "top-level");
+    any_camera camera = camera_from_json(require(j, "", "camera", "an object"), "camera");
+    inspection_task task = task_from_json(require(j, "", "task", "an object"), "task");
+    return {std::move(camera), task};
+}
+
+/// Parses the input JSON from text. `source` (a file name) prefixes messages and is the
+/// io_error path; empty for none.
+inline camera_task parse_camera_task(std::string_view text, const std::string& source = {}) {
+    return detail::json_io::with_source(source, [&] {
+        return camera_task_from_json(detail::json_io::parse(text, source));
+    });
+}
+
+/// Reads the input JSON file. Throws certipose::io_error(path) if it is missing, unreadable or
+/// not JSON; certipose::invalid_argument (field() = JSON path, message prefixed by the file
+/// name) for schema errors and impossible values.
+inline camera_task read_camera_task(const std::filesystem::path& path) {
+    return parse_camera_task(detail::json_io::read_text_file(path, "read_camera_task"),
+                             path.string());
+}
+
+/// The input JSON for a camera and task (every field written, defaults included), e.g. to
+/// generate configurations; parse_camera_task reads it back to an equal camera.
+inline nlohmann::ordered_json camera_task_to_json(const camera_task& in) {
+    using namespace detail::json_io;
+    ordered_json cam;
+    const auto sensor = [&](const auto& c) {
+        cam["focal_length"] = finite(c.focal_length(), "camera.focal_length");
+        cam["pixel_pitch"] = finite(c.pixel_pitch(), "camera.pixel_pitch");
+        cam["width_px"] = integral_or_double(c.width_px(), "camera.width_px");
+        cam["height_px"] = integral_or_double(c.height_px(), "camera.height_px");
+        cam["principal_point_px"] = ordered_json::array(
+            {finite(c.principal_point_px().x(), "camera.principal_point_px[0]"),
+             finite(c.principal_point_px().y(), "camera.principal_point_px[1]")});
+        cam["skew"] = finite(c.skew(), "camera.skew");
+        cam["aspect"] = finite(c.aspect(), "camera.aspect");
+    };
+    if (const auto* t = std::get_if<thin_lens_camera>(&in.camera)) {
+        cam["model"] = "thin_lens";
+        cam["focal_length"] = nullptr;  // keep the documented field order
+        cam["f_stop"] = finite(t->f_stop(), "camera.f_stop");
+        cam["focus_distance"] = finite(t->focus_distance(), "camera.focus_distance");
+        cam["max_blur_circle"] = finite(t->max_blur_circle(), "camera.max_blur_circle");
+        sensor(*t);
+    } else {
+        const auto& p = std::get<pinhole_camera>(in.camera);
+        cam["model"] = "pinhole";
+        sensor(p);
+        cam["d_min"] = finite(p.distance_range().min, "camera.d_min");
+        cam["d_max"] = finite_or_unbounded(p.distance_range().max, "camera.d_max");
+    }
+    ordered_json task;
+    task["min_view_angle"] = finite(in.task.min_view_angle, "task.min_view_angle");
+    task["max_metres_per_pixel"] =
+        in.task.max_metres_per_pixel
+            ? finite_or_unbounded(*in.task.max_metres_per_pixel, "task.max_metres_per_pixel")
+            : ordered_json(nullptr);
+    return {{"camera", std::move(cam)}, {"task", std::move(task)}};
+}
+
+// ==== result ===================================================================================
+
+/// `make_result_document` for a camera read from JSON.
+template <Interval I>
+result_document make_result_document(const solve_result<I>& result, const triangle_mesh& mesh,
+                                     const any_camera& camera, const inspection_task& task,
+                                     const solve_options& options) {
+    return std::visit(
+        [&](const auto& c) { return make_result_document(result, mesh, c, task, options); },
+        camera);
+}
+
+/// The result JSON of DESIGN.md §6 (keys in the documented order). Non-finite numbers are an
+/// invalid_argument naming the JSON path, except camera.d_max = +inf, written as null. Extra
+/// fields may be added to the returned object before it is written (write_json_file).
+inline nlohmann::ordered_json result_to_json(const result_document& d) {
+    using namespace detail::json_io;
+    ordered_json facet;
+    facet["index"] = d.facet.index;
+    facet["vertices"] = matrix(d.facet.vertices, "facet.vertices");
+    facet["normal"] = numbers(d.facet.normal, "facet.normal");
+
+    ordered_json camera;
+    camera["width_px"] = integral_or_double(d.camera.width_px, "camera.width_px");
+    camera["height_px"] = integral_or_double(d.camera.height_px, "camera.height_px");
+    camera["K"] = matrix(d.camera.K, "camera.K");
+    camera["d_min"] = finite(d.camera.d_min, "camera.d_min");
+    camera["d_max"] = finite_or_unbounded(d.camera.d_max, "camera.d_max");
+
+    ordered_json task;
+    task["min_view_angle"] = finite(d.task.min_view_angle, "task.min_view_angle");
+    task["max_metres_per_pixel"] =
+        d.task.max_metres_per_pixel
+            ? finite_or_unbounded(*d.task.max_metres_per_pixel, "task.max_metres_per_pixel")
+            : ordered_json(nullptr);
+
+    ordered_json settings;
+    settings["position_eps"] = finite(d.settings.position_eps, "settings.position_eps");
+    settings["orientation_eps"] = finite(d.settings.orientation_eps, "settings.orientation_eps");
+
+    ordered_json boxes = ordered_json::array();
+    for (std::size_t i = 0; i < d.boxes.size(); ++i) {
+        const box_record& b = d.boxes[i];
+        const std::string path = element("boxes", i);
+        ordered_json box;
+        box["class"] = to_string(b.cls);
+        box["position"] = bounds(b.position, child(path, "position"));
+        box["orientation"] = bounds(b.orientation, child(path, "orientation"));
+        boxes.push_back(std::move(box));
+    }
+
+    const solve_stats& s = d.stats;
+    ordered_json stats;
+    stats["valid"] = s.valid;
+    stats["boundary"] = s.boundary;
+    stats["seconds"] = finite(s.seconds, "stats.seconds");
+    // Extra fields (allowed by the contract): per-stage counts and times, why the run ended.
+    stats["position_valid"] = s.position_valid;
+    stats["position_boundary"] = s.position_boundary;
+    stats["contractions"] = s.contractions;
+    stats["bisections"] = s.bisections;
+    stats["occlusion_tests"] = s.occlusion_tests;
+    stats["orientation_certifications"] = s.orientation_certifications;
+    stats["seconds_position"] = finite(s.seconds_position, "stats.seconds_position");
+    stats["seconds_orientation"] = finite(s.seconds_orientation, "stats.seconds_orientation");
+    stats["termination"] = to_string(s.reason);
+
+    ordered_json j;
+    j["facet"] = std::move(facet);
+    j["camera"] = std::move(camera);
+    j["task"] = std::move(task);
+    j["settings"] = std::move(settings);
+    j["boxes"] = std::move(boxes);
+    j["stats"] = std::move(stats);
+    return j;
+}
+
+/// Text of a JSON document laid out for people and diffs: one top-level member per line, and
+/// one element per line for arrays of objects/arrays (so one box per line), each member dumped
+/// compactly with round-trip doubles. Ends with a newline.
+inline std::string json_text(const nlohmann::ordered_json& j) {
+    using ordered_json = nlohmann::ordered_json;
+    const certipose::detail::round_to_nearest_scope nearest;  // shortest round-trip digits
+    const auto dump = [](const ordered_json& v) {
+        return v.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+    };
+    if (!j.is_object() || j.empty()) return dump(j) + "\n";
+    std::string out = "{\n";
+    std::size_t n = 0;
+    for (auto it = j.begin(); it != j.end(); ++it, ++n) {
+        out += "  " + dump(ordered_json(it.key())) + ": ";
+        const ordered_json& v = it.value();
+        const bool nested_lines = v.is_array() && !v.empty() &&
+                                  std::all_of(v.begin(), v.end(), [](const ordered_json& e) {
+                                      return e.is_object() || e.is_array();
+                                  });
+        if (nested_lines) {
+            out += "[\n";
+            for (std::size_t i = 0; i < v.size(); ++i)
+                out += "    " + dump(v[i]) + (i + 1 < v.size() ? ",\n" : "\n");
+            out += "  ]";
+        } else {
+            out += dump(v);
+        }
+        out += n + 1 < j.size() ? ",\n" : "\n";
+    }
+    return out + "}\n";
+}
+
+/// Writes any JSON document (e.g. result_to_json plus extra fields) atomically, laid out by
+/// json_text. Throws certipose::io_error(path) on failure; nothing is written half.
+inline void write_json_file(const std::filesystem::path& path, const nlohmann::ordered_json& j) {
+    write_file_atomically(path, json_text(j));
+}
+
+/// Writes the result JSON of DESIGN.md §6 atomically.
+inline void write_result_json(const std::filesystem::path& path, const result_document& d) {
+    write_json_file(path, result_to_json(d));
+}
+
+/// Reads a result JSON document (as written by result_to_json or by another tool). Fields it
+/// does not know are ignored (the contract allows extras); required fields missing or of the
+/// wrong type, an unknown class or termination, or a box with lower > upper are an
+/// invalid_argument naming the JSON path. camera.d_max null reads as +inf; absent extra stats
+/// read as 0 / "completed".
+inline result_document result_from_json(const nlohmann::json& j) {
+    using namespace detail::json_io;
+    const certipose::detail::round_to_nearest_scope nearest;  // integer → double conversions
+    result_document d;
+    require_object(j, "");
+
+    const json& facet = require_object(require(j, "", "facet", "an object"), "facet");
+    d.facet.index = as_count(require(facet, "facet", "index", "an integer"), "facet.index");
+    d.facet.vertices = as_matrix<3, 3>(require(facet, "facet", "vertices", "3 points"),
+                                       "facet.vertices");
+    d.facet.normal = as_numbers<3>(require(facet, "facet", "normal", "3 numbers"), "facet.normal");
+
+    const json& camera = require_object(require(j, "", "camera", "an object"), "camera");
+    d.camera.width_px = required_number(camera, "camera", "width_px");
+    d.camera.height_px = required_number(camera, "camera", "height_px");
+    d.camera.K = as_matrix<3, 3>(require(camera, "camera", "K", "a 3x3 matrix"), "camera.K");
+    d.camera.d_min = required_number(camera, "camera", "d_min");
+    const json& d_max = require(camera, "camera", "d_max", "a number, or null for unbounded");
+    d.camera.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity()
+                                     : as_number(d_max, "camera.d_max");
+
+    const json& task = require_object(require(j, "", "task", "an object"), "task");
+    d.task.min_view_angle = required_number(task, "task", "min_view_angle");
+    d.task.max_metres_per_pixel = optional_number(task, "task", "max_metres_per_pixel");
+
+    const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
+    d.settings.position_eps = required_number(settings, "settings", "position_eps");
+    d.settings.orientation_eps = required_number(settings, "settings", "orientation_eps");
+
+    const json& boxes = require(j, "", "boxes", "an array");
+    if (!boxes.is_array()) fail("boxes", "expected an array, got " + describe(boxes));
+    d.boxes.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const std::string path = element("boxes", i);
+        const json& b = require_object(boxes[i], path);
+        box_record r;
+        const std::string cls = as_string(require(b, path, "class", "\"valid\" or \"boundary\""),
+                                          child(path, "class"), "\"valid\" or \"boundary\"");
+        if (cls == "valid")
+            r.cls = box_class::valid;
+        else if (cls == "boundary")
+            r.cls = box_class::boundary;
+        else
+            fail(child(path, "class"), "unknown class \"" + cls + "\" (expected \"valid\" or \"boundary\")");
+        r.position = as_matrix<3, 2>(require(b, path, "position", "3 intervals"), child(path, "position"));
+        r.orientation = as_matrix<3, 2>(require(b, path, "orientation", "3 intervals"),
+                                        child(path, "orientation"));
+        check_bounds(r.position, child(path, "position"));
+        check_bounds(r.orientation, child(path, "orientation"));
+        d.boxes.push_back(r);
+    }
+
+    const json& stats = require_object(require(j, "", "stats", "an object"), "stats");
+    solve_stats& s = d.stats;
+    s.valid = as_count(require(stats, "stats", "valid", "an integer"), "stats.valid");
+    s.boundary = as_count(require(stats, "stats", "boundary", "an integer"), "stats.boundary");
+    s.seconds = required_number(stats, "stats", "seconds");
+    const auto count = [&](std::string_view key, std::size_t& out) {
+        if (const json* v = find(stats, key)) out = as_count(*v, child("stats", key));
+    };
+    count("position_valid", s.position_valid);
+    count("position_boundary", s.position_boundary);
+    count("contractions", s.contractions);
+    count("bisections", s.bisections);
+    count("occlusion_tests", s.occlusion_tests);
+    count("orientation_certifications", s.orientation_certifications);
+    s.seconds_position = optional_number(stats, "stats", "seconds_position").value_or(0.0);
+    s.seconds_orientation = optional_number(stats, "stats", "seconds_orientation").value_or(0.0);
+    if (const json* t = find(stats, "termination")) {
+        const std::string name = as_string(*t, "stats.termination", "a string");
+        const auto reason = termination_from_string(name);
+        if (!reason)
+            fail("stats.termination", "unknown termination \"" + name +
+                                          "\" (expected completed, box_budget, deadline or cancelled)");
+        s.reason = *reason;
+    }
+    return d;
+}
+
+/// Parses a result JSON document from text (`source` as in parse_camera_task).
+inline result_document parse_result_json(std::string_view text, const std::string& source = {}) {
+    return detail::json_io::with_source(source, [&] {
+        return result_from_json(detail::json_io::parse(text, source));
+    });
+}
+
+/// Reads a result JSON file. Throws certipose::io_error(path) if it is missing, unreadable or
+/// not JSON; certipose::invalid_argument (field() = JSON path) if it does not match the format.
+inline result_document read_result_json(const std::filesystem::path& path) {
+    return parse_result_json(detail::json_io::read_text_file(path, "read_result_json"),
+                             path.string());
+}
+
+}  // namespace certipose

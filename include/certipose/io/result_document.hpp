@@ -1,0 +1,113 @@
+// certipose/io/result_document.hpp — a solver result as plain doubles: exactly the content of
+// the result JSON of DESIGN.md §6 (no JSON library, no CGAL).
+//
+// `result_document` is the bridge between the solver and the files that leave the library: it
+// is what the JSON writer (io/json.hpp) writes, what the JSON reader returns, and what the PLY
+// writer (io/ply.hpp) draws. Intervals become their [lower, upper] bounds — already rounded
+// outward by the interval backend, and written back with round-trip precision, so a tool that
+// reads the file checks exactly the boxes the library certified. The camera block records
+// what the solver certified against: K, the image size and [d_min, d_max] AFTER the optional
+// resolution cap (capped_distance_range), so a checker needs no camera model of its own.
+#pragma once
+
+#include <certipose/camera/camera_model.hpp>
+#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/interval/concept.hpp>
+#include <certipose/solver/result.hpp>
+#include <certipose/solver/task.hpp>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace certipose {
+
+/// [[l0, u0], [l1, u1], [l2, u2]]: a 3D box as interval bounds.
+using bounds_3d = std::array<std::array<double, 2>, 3>;
+
+/// One classified 6D pose box as plain doubles (DESIGN.md §6 "boxes").
+struct box_record {
+    box_class cls = box_class::valid;
+    bounds_3d position{};     ///< [x], [y], [z], metres
+    bounds_3d orientation{};  ///< [φ], [γ], [β], radians (ZXZ, DESIGN.md §2)
+    friend bool operator==(const box_record&, const box_record&) = default;
+};
+
+/// The result JSON of DESIGN.md §6, field by field.
+struct result_document {
+    struct facet_record {
+        std::size_t index = 0;
+        std::array<std::array<double, 3>, 3> vertices{};  ///< v1, v2, v3 (face order)
+        std::array<double, 3> normal{};                   ///< outward unit normal
+        friend bool operator==(const facet_record&, const facet_record&) = default;
+    };
+    struct camera_record {
+        double width_px = 0, height_px = 0;
+        std::array<std::array<double, 3>, 3> K{};  ///< rows of the intrinsic matrix
+        double d_min = 0, d_max = 0;               ///< certified distances; d_max may be +inf
+        friend bool operator==(const camera_record&, const camera_record&) = default;
+    };
+    struct task_record {
+        double min_view_angle = 0;
+        std::optional<double> max_metres_per_pixel{};
+        friend bool operator==(const task_record&, const task_record&) = default;
+    };
+    struct settings_record {
+        double position_eps = 0, orientation_eps = 0;
+        friend bool operator==(const settings_record&, const settings_record&) = default;
+    };
+
+    facet_record facet;
+    camera_record camera;
+    task_record task;
+    settings_record settings;
+    std::vector<box_record> boxes;
+    /// valid, boundary and seconds are the contract; the rest are the extra "stats" fields.
+    solve_stats stats;
+};
+
+/// Bounds of an interval box; an empty component gives NaN bounds (the writers reject them).
+template <Interval I>
+bounds_3d to_bounds(const interval_box<I, 3>& b) {
+    bounds_3d r{};
+    for (std::size_t i = 0; i < 3; ++i) r[i] = {lower(b[i]), upper(b[i])};
+    return r;
+}
+
+template <Interval I>
+box_record to_record(const classified_box<I>& b) {
+    return {b.cls, to_bounds(b.box.position), to_bounds(b.box.orientation)};
+}
+
+/// The document of one solver run. `mesh` must be the mesh that was solved (the facet is
+/// mesh.facet(result.facet_index); throws certipose::out_of_range if that index is not in it),
+/// `camera`, `task` and `options` the ones passed to the solver.
+template <Interval I, CameraModel C>
+result_document make_result_document(const solve_result<I>& result, const triangle_mesh& mesh,
+                                     const C& camera, const inspection_task& task,
+                                     const solve_options& options) {
+    result_document d;
+    const certipose::facet& f = mesh.facet(result.facet_index);
+    d.facet.index = result.facet_index;
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k) d.facet.vertices[i][k] = f.v[i][k];
+        d.facet.normal[i] = f.normal[i];
+    }
+    d.camera.width_px = camera.width_px();
+    d.camera.height_px = camera.height_px();
+    const Eigen::Matrix3d k = camera.intrinsics();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) d.camera.K[r][c] = k(r, c);
+    const certipose::distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
+    d.camera.d_min = range.min;
+    d.camera.d_max = range.max;
+    d.task = {task.min_view_angle, task.max_metres_per_pixel};
+    d.settings = {options.position_eps, options.orientation_eps};
+    d.boxes.reserve(result.boxes.size());
+    for (const auto& b : result.boxes) d.boxes.push_back(to_record(b));
+    d.stats = result.stats;
+    return d;
+}
+
+}  // namespace certipose

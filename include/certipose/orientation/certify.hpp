@@ -1,0 +1,401 @@
+// certipose/orientation/certify.hpp — proof of the field-of-view constraint over a whole 6D pose
+// box by interval arithmetic (DESIGN.md §3 constraint 5, §4 "Orientation").
+//
+// `certify_fov(position, orientation, facet, K, w, h)` answers, for EVERY camera position p in
+// [p] and EVERY rotation R(φ, γ, β) with (φ, γ, β) in [e]: is every facet vertex in front of
+// the camera and inside the image? `satisfied` proves that all are, `violated` that no pose of
+// the box sees the whole facet, `undecided` is neither. The paper's §6.4 offsets are an
+// approximation (an offset about the camera's X/Y axes is not an offset of ZXZ angles), so every
+// 6D box certipose returns as VALID has passed this test.
+//
+// With q = Rᵀ(v − p) a vertex in camera coordinates, the division-free image test
+// 0 ≤ (Kq)_x ≤ w·q_z, 0 ≤ (Kq)_y ≤ h·q_z, q_z > 0 is five half-spaces ℓ_k·q > 0: the rows of K,
+// w·ẑ and h·ẑ minus them (the side planes of the viewing frustum), and ẑ. Two proofs per vertex:
+//  * Centred form (most boxes): g_k(e) = ℓ_k·Rᵀ(e)(v − p0) is enclosed by its mean-value form
+//    about the box centre e0, whose derivative is ∂g_k/∂e_j = ℓ_k·(u × a_j) with u = Rᵀ(v − p0)
+//    and a_j the rotation axes of φ, γ, β in camera coordinates; factored as ℓ_k·(u0 + U × W),
+//    W = Σ a_j (e_j − e0_j), it costs one interval cross product per vertex and stays sharp
+//    where the box is narrow. The position enters linearly, ℓ·Rᵀ(v − p) = g(e) + (Rℓ)·(p0 − p),
+//    so it is bounded exactly for each rotation: Σ_j |(Rℓ)_j|·radius_j.
+//  * Roll-free cone (wide β): if the angle θ between v − p and the optical axis a(φ, γ) is
+//    below atan(min_k ℓ_kz / ‖ℓ_k,xy‖) the vertex is in the image for EVERY roll β. θ is
+//    bounded by the triangle inequality on the sphere, about the box centre
+//    (|θ − θ(v − p0, a0)| ≤ r_pos + r_axis, the angular radii of the position box seen from the
+//    vertex and of the patch of axes, the latter from the spherical law of cosines) and about
+//    the pole (|A − G| ≤ θ ≤ min(A + G, 2π − A − G), A and G the angles of v − p and a from
+//    +z). The pole bound is what stays sharp near the ZXZ singularity γ ≈ 0 or π, where φ and β
+//    are coupled (at γ = 0 only φ + β matters) and φ may span the whole circle.
+// Violation is proved by one (vertex, side) pair with ℓ_k·q < 0 over the whole box, or by a
+// vertex outside the cone circumscribing the image (or behind the camera) for the whole box.
+// Each entry point holds a `rounding_guard<I>`; libm is called in a single round-to-nearest
+// scope per batch (a mode switch costs ~100 ns, more than the libm calls it brackets).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/contractor/concept.hpp"
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/operations.hpp"
+#include "certipose/orientation/detail/spherical.hpp"
+#include "certipose/pose/pose_box.hpp"
+
+namespace certipose {
+
+/// The image of a camera as four half-spaces ℓ_k·q ≥ 0 in camera coordinates (u ≥ 0, u ≤ w,
+/// v ≥ 0, v ≤ h in the division-free form), with what `certify_fov` needs precomputed once per
+/// camera. K must have third row (0, 0, 1) and an invertible upper-left 2×2 block; the principal
+/// point may lie anywhere. Throws certipose::invalid_argument("K" / "width_px" / "height_px").
+template <Interval I>
+class fov_frustum {
+public:
+    /// ℓ_k·q ≥ 0 ⇔ the pixel of q is on the image side of side k (u ≥ 0, u ≤ w, v ≥ 0, v ≤ h).
+    struct side {
+        std::array<I, 3> l;  ///< ℓ_k, enclosing the exact vector for the given K, w, h
+    };
+
+    fov_frustum(const Eigen::Matrix3d& K, double width_px, double height_px) {
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(K(r, c)))
+                    throw invalid_argument("K", "fov_frustum: K(" + std::to_string(r) + "," + std::to_string(c) +
+                                                    ") must be finite, got " + std::to_string(K(r, c)));
+        if (!(K(2, 0) == 0.0 && K(2, 1) == 0.0 && K(2, 2) == 1.0))
+            throw invalid_argument("K", "fov_frustum: the third row of K must be (0, 0, 1), got (" +
+                                            std::to_string(K(2, 0)) + ", " + std::to_string(K(2, 1)) + ", " +
+                                            std::to_string(K(2, 2)) + ")");
+        if (!(width_px > 0.0) || !std::isfinite(width_px))
+            throw invalid_argument("width_px", "fov_frustum: width_px must be positive and finite, got " +
+                                                   std::to_string(width_px));
+        if (!(height_px > 0.0) || !std::isfinite(height_px))
+            throw invalid_argument("height_px", "fov_frustum: height_px must be positive and finite, got " +
+                                                    std::to_string(height_px));
+        const rounding_guard<I> guard{};
+        const I w(width_px), h(height_px);
+        const std::array<std::array<I, 3>, 4> ls{{
+            {I(K(0, 0)), I(K(0, 1)), I(K(0, 2))},              // u ≥ 0
+            {I(-K(0, 0)), I(-K(0, 1)), w - I(K(0, 2))},        // u ≤ w
+            {I(K(1, 0)), I(K(1, 1)), I(K(1, 2))},              // v ≥ 0
+            {I(-K(1, 0)), I(-K(1, 1)), h - I(K(1, 2))},        // v ≤ h
+        }};
+        double inner = detail::orientation::half_pi_lo;
+        for (std::size_t k = 0; k < 4; ++k) {
+            sides_[k].l = ls[k];
+            const I rho = sqrt(sqr(ls[k][0]) + sqr(ls[k][1]));
+            if (!(lower(rho) > 0.0))
+                throw invalid_argument("K", "fov_frustum: a row of K's upper-left 2x2 block is zero");
+            // Roll-free cone: a unit ray q at angle t from the axis has ℓ·q ≥ ℓz cos t − ρ sin t,
+            // positive while tan t < ℓz/ρ.
+            inner = lower(ls[k][2]) > 0.0 ? std::min(inner, std::max(0.0, lower(atan(ls[k][2] / rho)))) : 0.0;
+        }
+        inner_ = inner;
+        // Circumscribed cone: the largest angle from the axis of a ray through the image is at a
+        // corner (the normalised image is a parallelogram, the norm is convex).
+        const I a = I(K(0, 0)), b = I(K(0, 1)), c = I(K(1, 0)), d = I(K(1, 1));
+        const I det = a * d - b * c;
+        if (!(lower(det) > 0.0 || upper(det) < 0.0))
+            throw invalid_argument("K", "fov_frustum: the upper-left 2x2 block of K must be invertible");
+        double tan_outer = 0.0;
+        for (const double u : {0.0, width_px})
+            for (const double v : {0.0, height_px}) {
+                const I du = I(u) - I(K(0, 2)), dv = I(v) - I(K(1, 2));
+                const I xn = (d * du - b * dv) / det, yn = (a * dv - c * du) / det;
+                tan_outer = std::max(tan_outer, upper(sqrt(sqr(xn) + sqr(yn))));
+            }
+        outer_ = upper(atan(I(tan_outer)));
+    }
+
+    /// From any camera model (its K, width and height).
+    template <CameraModel C>
+    explicit fov_frustum(const C& camera) : fov_frustum(camera.intrinsics(), camera.width_px(), camera.height_px()) {}
+
+    const std::array<side, 4>& sides() const noexcept { return sides_; }
+    /// A lower bound of the half-angle of the largest cone about the optical axis whose rays all
+    /// meet the image (0 when the principal point is outside it): inside it any roll is fine.
+    double inner_half_angle() const noexcept { return inner_; }
+    /// An upper bound of the largest angle between the optical axis and a ray through the image.
+    double outer_half_angle() const noexcept { return outer_; }
+
+private:
+    std::array<side, 4> sides_{};
+    double inner_ = 0.0, outer_ = 0.0;
+};
+
+namespace detail::orientation {
+
+inline void check_facet(const facet& f) {
+    for (const auto& v : f.v)
+        for (int k = 0; k < 3; ++k)
+            if (!std::isfinite(v[k]))
+                throw invalid_argument("facet", "certify_fov: facet vertex coordinate " + std::to_string(v[k]) +
+                                                    " is not finite");
+}
+
+template <Interval I, std::size_t N>
+bool finite_box(const interval_box<I, N>& b) {
+    for (const I& c : b.x)
+        if (!std::isfinite(lower(c)) || !std::isfinite(upper(c))) return false;
+    return true;
+}
+
+template <Interval I>
+using ivec3 = std::array<I, 3>;
+
+template <Interval I>
+I dot(const ivec3<I>& a, const ivec3<I>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+template <Interval I>
+ivec3<I> cross(const ivec3<I>& a, const ivec3<I>& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β) from sines and cosines, row-major (DESIGN.md §2).
+template <Interval I>
+std::array<ivec3<I>, 3> zxz_rows(const I& sp, const I& cp, const I& sg, const I& cg, const I& sb, const I& cb) {
+    const I cg_sb = cg * sb, cg_cb = cg * cb;
+    return {{{cp * cb - sp * cg_sb, -(cp * sb) - sp * cg_cb, sp * sg},
+             {sp * cb + cp * cg_sb, cp * cg_cb - sp * sb, -(cp * sg)},
+             {sg * sb, sg * cb, cg}}};
+}
+
+/// Rᵀ·d for R given by rows.
+template <Interval I>
+ivec3<I> transpose_times(const std::array<ivec3<I>, 3>& r, const ivec3<I>& d) {
+    return {r[0][0] * d[0] + r[1][0] * d[1] + r[2][0] * d[2], r[0][1] * d[0] + r[1][1] * d[1] + r[2][1] * d[2],
+            r[0][2] * d[0] + r[1][2] * d[1] + r[2][2] * d[2]};
+}
+
+}  // namespace detail::orientation
+
+// noclone: GCC's IPA-CP otherwise clones this large function per call site with the CGAL
+// backend, and one test translation unit took over 20 min to compile at -O2 (12 s without).
+// Clang has no such attribute (nor the problem): silence its unknown-attribute warning.
+#if defined(__clang__)
+#pragma clang diagnostic push
+#pragma clang diagnostic ignored "-Wunknown-attributes"
+#endif
+/// Proves or refutes constraint 5 over the whole 6D box [p] × [e] (see the header comment).
+/// An empty box yields `violated` (it holds no pose to certify); a box with an infinite bound
+/// yields `undecided`. Throws invalid_argument("facet") for a non-finite vertex.
+template <Interval I>
+[[gnu::noclone]] verdict certify_fov(const position_box<I>& position, const orientation_box<I>& orientation,
+                                     const facet& f, const fov_frustum<I>& frustum) {
+    using namespace detail::orientation;
+    using certipose::detail::round_to_nearest_scope;
+    check_facet(f);
+    const rounding_guard<I> guard{};
+    if (is_empty(position) || is_empty(orientation)) return verdict::violated;
+    if (!finite_box(position) || !finite_box(orientation)) return verdict::undecided;
+
+    const I& phi = orientation[0];
+    const I& gam = orientation[1];
+    const I& bet = orientation[2];
+    const double phi0 = mid(phi), gam0 = mid(gam), bet0 = mid(bet);
+    const double r_phi = radius(phi), r_gam = radius(gam);
+    // The centred form is hopeless when β spans half a turn; the roll-free cone is the tool then.
+    const bool centred = width(bet) < pi_lo;
+    // The law-of-cosines bound of the axis patch needs sin γ·sin γ0 ≥ 0 and cos Δφ ≥ 0.
+    const bool patch = lower(gam) >= 0.0 && upper(gam) <= pi_lo && r_phi <= half_pi_lo;
+
+    // Every sine and cosine the box needs, under ONE switch of the rounding mode (a switch
+    // costs more than the libm calls; detail/spherical.hpp).
+    bounds b_sp, b_cp, b_sg, b_cg, b_sb, b_cb, b_sp0, b_cp0, b_sg0, b_cg0, b_sb0, b_cb0;
+    bounds b_sg_lo, b_cg_lo, b_sg_hi, b_cg_hi, b_cr, b_g;
+    {
+        const round_to_nearest_scope nearest{};
+        b_sp = sin_bounds_nearest(lower(phi), upper(phi)), b_cp = cos_bounds_nearest(lower(phi), upper(phi));
+        b_sg = sin_bounds_nearest(lower(gam), upper(gam)), b_cg = cos_bounds_nearest(lower(gam), upper(gam));
+        b_g = acos_bounds_nearest(b_cg.lo, b_cg.hi);  // angle G between the axis and +z
+        b_sb = sin_bounds_nearest(lower(bet), upper(bet)), b_cb = cos_bounds_nearest(lower(bet), upper(bet));
+        b_sp0 = sin_bounds_nearest(phi0, phi0), b_cp0 = cos_bounds_nearest(phi0, phi0);
+        b_sg0 = sin_bounds_nearest(gam0, gam0), b_cg0 = cos_bounds_nearest(gam0, gam0);
+        b_sb0 = sin_bounds_nearest(bet0, bet0), b_cb0 = cos_bounds_nearest(bet0, bet0);
+        if (patch) {
+            b_sg_lo = sin_bounds_nearest(lower(gam), lower(gam)), b_cg_lo = cos_bounds_nearest(lower(gam), lower(gam));
+            b_sg_hi = sin_bounds_nearest(upper(gam), upper(gam)), b_cg_hi = cos_bounds_nearest(upper(gam), upper(gam));
+            b_cr = cos_bounds_nearest(r_phi, r_phi);
+        }
+    }
+    const I sp = to_interval<I>(b_sp), cp = to_interval<I>(b_cp), sg = to_interval<I>(b_sg),
+            cg = to_interval<I>(b_cg), sb = to_interval<I>(b_sb), cb = to_interval<I>(b_cb);
+    const I sp0 = to_interval<I>(b_sp0), cp0 = to_interval<I>(b_cp0), sg0 = to_interval<I>(b_sg0),
+            cg0 = to_interval<I>(b_cg0), sb0 = to_interval<I>(b_sb0), cb0 = to_interval<I>(b_cb0);
+    const std::array<double, 3> r_pos{radius(position[0]), radius(position[1]), radius(position[2])};
+    const std::array<double, 3> p0 = midpoint(position);
+    std::array<ivec3<I>, 3> d0{};
+    for (std::size_t i = 0; i < 3; ++i)
+        d0[i] = {I(f.v[i].x()) - I(p0[0]), I(f.v[i].y()) - I(p0[1]), I(f.v[i].z()) - I(p0[2])};
+
+    // ---- centred form in (φ, γ, β), exact in p -----------------------------------------------
+    // g_k(e) = ℓ_k·Rᵀ(e)·d0 has ∂g_k/∂e_j = ℓ_k·(u × a_j), u = Rᵀd0, with the rotation axes in
+    // camera coordinates a_φ = Rᵀẑ, a_γ = Rz(−β)x̂, a_β = ẑ. So g_k(e) ∈ ℓ_k·(u0 + U × W) with
+    // W = Σ_j a_j·(e_j − e0_j): one cross product per vertex, tighter than the sum of partials
+    // (sub-distributivity). The position enters linearly: ℓ·Rᵀ(v − p) = g(e) + (Rℓ)·(p0 − p).
+    std::array<std::array<bool, 5>, 3> ok{};
+    if (centred) {
+        const auto rows = zxz_rows(sp, cp, sg, cg, sb, cb);
+        const auto rows0 = zxz_rows(sp0, cp0, sg0, cg0, sb0, cb0);
+        const I d_phi = phi - I(phi0), d_gam = gam - I(gam0), d_bet = bet - I(bet0);
+        const ivec3<I> w{rows[2][0] * d_phi + cb * d_gam, rows[2][1] * d_phi - sb * d_gam, rows[2][2] * d_phi + d_bet};
+        std::array<ivec3<I>, 5> ls{};
+        for (std::size_t k = 0; k < 4; ++k) ls[k] = frustum.sides()[k].l;
+        ls[4] = {I(0.0), I(0.0), I(1.0)};  // in front: q_z > 0
+        std::array<I, 5> pos_term{};
+        for (std::size_t k = 0; k < 5; ++k) {
+            const I t = abs(dot(rows[0], ls[k])) * I(r_pos[0]) + abs(dot(rows[1], ls[k])) * I(r_pos[1]) +
+                        abs(dot(rows[2], ls[k])) * I(r_pos[2]);
+            pos_term[k] = I(-upper(t), upper(t));
+        }
+        for (std::size_t i = 0; i < 3; ++i) {
+            const ivec3<I> u0 = transpose_times(rows0, d0[i]), u = transpose_times(rows, d0[i]);
+            const ivec3<I> du = cross(u, w);
+            const ivec3<I> s{u0[0] + du[0], u0[1] + du[1], u0[2] + du[2]};
+            for (std::size_t k = 0; k < 5; ++k) {
+                const I value = dot(ls[k], s) + pos_term[k];  // ⊇ ℓ_k·q over the box
+                if (upper(value) < 0.0) return verdict::violated;  // outside through side k for every pose
+                ok[i][k] = lower(value) > 0.0;
+            }
+        }
+    }
+    std::array<bool, 3> pending{};
+    bool any_pending = false;
+    for (std::size_t i = 0; i < 3; ++i) {
+        pending[i] = !(ok[i][0] && ok[i][1] && ok[i][2] && ok[i][3] && ok[i][4]);
+        any_pending = any_pending || pending[i];
+    }
+    if (!any_pending) return verdict::satisfied;
+
+    // ---- roll-free cone: the angle θ between v − p and the axis, for the vertices left --------
+    // The axis at the box centre and the angular radius of the patch of axes about it. Path via
+    // (φ, γ0): moving γ moves the axis by |Δγ|, then moving φ by |Δφ|·|sin γ0|. When `patch`,
+    // sharper by the spherical law of cosines:
+    //   cos dist = cos γ cos γ0 + sin γ sin γ0 cos Δφ ≥ cos γ cos γ0 + sin γ sin γ0 cos r_φ,
+    // a sinusoid in γ whose minimum over Γ ⊂ [0, π] is at an end of Γ (its phase is in [0, π]).
+    const ivec3<I> a0{sp0 * sg0, -(cp0 * sg0), cg0};
+    const I a0_norm = sqrt(dot(a0, a0));
+    double cos_patch = -1.0;
+    if (patch) {
+        const I b = sg0 * I(b_cr.lo, 1.0);
+        cos_patch = std::min(lower(to_interval<I>(b_cg_lo) * cg0 + to_interval<I>(b_sg_lo) * b),
+                             lower(to_interval<I>(b_cg_hi) * cg0 + to_interval<I>(b_sg_hi) * b));
+    }
+    // Angle G = acos(cos γ) between the axis and +z, from the enclosure of cos over [γ].
+    const double g_lo = b_g.lo, g_hi = b_g.hi;
+    const I half_diag = sqrt(sqr(I(r_pos[0])) + sqr(I(r_pos[1])) + sqr(I(r_pos[2])));
+
+    // Per vertex, the algebraic parts first; then one rounding switch for every atan/acos.
+    std::array<double, 3> tan_pos{};
+    std::array<I, 3> cos_c{}, cos_pole{};
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (!pending[i]) continue;
+        const I n0_sq = dot(d0[i], d0[i]);
+        const I n0 = sqrt(n0_sq);
+        if (!(upper(half_diag) < lower(n0))) return verdict::undecided;  // the box reaches the vertex
+        // tan of the angular radius of the position box seen from the vertex about d0. The cone
+        // {angle(·, d0) ≤ t} is convex for t < π/2, so the largest angle is at a corner p0 − δ:
+        // tan = ‖δ⊥‖ / (‖d0‖ + δ∥), with ‖δ‖ = half_diag at every corner.
+        const I s0 = I(r_pos[0]) * d0[i][0] / n0, s1 = I(r_pos[1]) * d0[i][1] / n0, s2 = I(r_pos[2]) * d0[i][2] / n0;
+        const I hd_sq = sqr(half_diag);
+        double worst = 0.0;
+        for (const I& t : {s0 + s1 + s2, s0 + s1 - s2, s0 - s1 + s2, s0 - s1 - s2}) {
+            for (const I& par : {t, -t}) {
+                const double perp_sq = std::max(0.0, upper(hd_sq - sqr(par)));
+                worst = std::max(worst, upper(sqrt(I(perp_sq)) / (n0 + par)));
+            }
+        }
+        tan_pos[i] = worst;
+        cos_c[i] = dot(d0[i], a0) / (n0 * a0_norm);
+        cos_pole[i] = d0[i][2] / n0;
+    }
+    std::array<bounds, 3> b_pos{}, b_c{}, b_pole{};
+    bounds b_patch{0.0, pi_hi};
+    {
+        const round_to_nearest_scope nearest{};
+        if (patch) b_patch = acos_bounds_nearest(cos_patch, cos_patch);
+        for (std::size_t i = 0; i < 3; ++i) {
+            if (!pending[i]) continue;
+            b_pos[i] = atan_bounds_nearest(tan_pos[i], tan_pos[i]);
+            b_c[i] = acos_bounds_nearest(lower(cos_c[i]), upper(cos_c[i]));
+            b_pole[i] = acos_bounds_nearest(lower(cos_pole[i]), upper(cos_pole[i]));
+        }
+    }
+    const double r_axis = std::min({pi_hi, upper(I(r_gam) + I(r_phi) * abs(sg0)), b_patch.hi});
+    const I two_pi(2 * pi_lo, 2 * pi_hi);
+
+    bool all_certified = true;
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (!pending[i]) continue;
+        const I r_dir(b_pos[i].hi);
+        const I margin = r_dir + I(r_axis);
+        const I theta_c = to_interval<I>(b_c[i]), a_pole = to_interval<I>(b_pole[i]);
+        // About the box centre: |θ − θ(d0, a0)| ≤ r_dir + r_axis. About the pole:
+        // |A − G| ≤ θ ≤ min(A + G, 2π − A − G), A = angle(v − p, ẑ) ∈ a_pole ± r_dir.
+        const double a_lo = lower(a_pole - r_dir), a_hi = upper(a_pole + r_dir);
+        const double lo = std::max({lower(theta_c - margin), 0.0, lower(I(a_lo) - I(g_hi)), lower(I(g_lo) - I(a_hi))});
+        const double hi = std::min({upper(theta_c + margin), pi_hi, upper(I(a_hi) + I(g_hi)),
+                                    upper(two_pi - I(a_lo) - I(g_lo))});
+        if (!(lo <= hi)) {  // cannot happen with exact bounds; stay undecided rather than guess
+            all_certified = false;
+            continue;
+        }
+        if (lo >= half_pi_hi) return verdict::violated;                // behind the camera for every pose
+        if (lo > frustum.outer_half_angle()) return verdict::violated;  // outside the image for every pose
+        if (!(hi < frustum.inner_half_angle())) all_certified = false;  // else: in the image for any roll
+    }
+    return all_certified ? verdict::satisfied : verdict::undecided;
+}
+#if defined(__clang__)
+#pragma clang diagnostic pop
+#endif
+
+/// Same, building the frustum from K and the image size (prefer the frustum overload in loops).
+template <Interval I>
+verdict certify_fov(const position_box<I>& position, const orientation_box<I>& orientation, const facet& f,
+                    const Eigen::Matrix3d& K, double width_px, double height_px) {
+    return certify_fov(position, orientation, f, fov_frustum<I>(K, width_px, height_px));
+}
+
+/// Same for a 6D pose box.
+template <Interval I>
+verdict certify_fov(const pose_box<I>& box, const facet& f, const fov_frustum<I>& frustum) {
+    return certify_fov(box.position, box.orientation, f, frustum);
+}
+
+/// `BoxTest` over orientation boxes for one fixed position box (the inner test of an
+/// orientation paver). Counts its evaluations.
+template <Interval I>
+struct fov_orientation_test {
+    position_box<I> position;
+    facet target;
+    fov_frustum<I> frustum;
+    std::size_t certifications = 0;
+
+    verdict test(const orientation_box<I>& orientation) {
+        ++certifications;
+        return certify_fov(position, orientation, target, frustum);
+    }
+};
+
+/// `BoxTest` over 6D boxes (x, y, z, φ, γ, β), e.g. for a 6D paver.
+template <Interval I>
+struct fov_pose_test {
+    facet target;
+    fov_frustum<I> frustum;
+    std::size_t certifications = 0;
+
+    verdict test(const interval_box<I, 6>& box) {
+        ++certifications;
+        return certify_fov(pose_box<I>::from_6d(box), target, frustum);
+    }
+};
+
+}  // namespace certipose

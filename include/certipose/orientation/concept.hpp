@@ -1,0 +1,44 @@
+// certipose/orientation/concept.hpp — the OrientationPolicy concept: certified orientation boxes
+// for one certified position box (DESIGN.md §4–5, paper §6.4 and Algorithm 3 lines 28–36).
+//
+// The solver paves positions first; for every VALID position box [p] it asks the orientation
+// policy `policy.orient(p, facet, camera, orientation_eps)` for orientation boxes [e] such that
+// every pose of [p] × [e] satisfies the field-of-view constraint (DESIGN.md §3, constraint 5).
+// Every returned box must be certified (e.g. by `certify_fov`); an empty answer means "none
+// could be certified at this position-box size": the solver then bisects [p], down to ε_p, and
+// finally reports it BOUNDARY. The counters let the solver report how much certification work
+// the orientation stage did. The default model is `paper_orientation` (paper §6.4 with
+// interval certification); `paving_orientation` paves the whole orientation space instead.
+// A policy must work with any `CameraModel`; the concept is checked for the solver's camera.
+#pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <vector>
+
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/pose/pose_box.hpp"
+
+namespace certipose {
+
+/// What an orientation policy returns for one position box.
+template <Interval I>
+struct orientation_result {
+    /// Certified boxes [φ]×[γ]×[β]: every pose of position × box satisfies constraint 5.
+    /// Empty when none could be certified for this position box.
+    std::vector<orientation_box<I>> boxes;
+    /// 6D interval certifications (`certify_fov` evaluations) attempted.
+    std::size_t certifications = 0;
+};
+
+/// `p.orient(position, facet, camera, orientation_eps)` → certified orientation boxes.
+template <class P, class I, class Camera>
+concept OrientationPolicy =
+    Interval<I> && CameraModel<Camera> &&
+    requires(const P& p, const position_box<I>& position, const facet& f, const Camera& camera, double eps) {
+        { p.orient(position, f, camera, eps) } -> std::same_as<orientation_result<I>>;
+    };
+
+}  // namespace certipose

@@ -1,0 +1,88 @@
+// certipose/orientation/detail/spherical.hpp — small private helpers of the orientation module:
+// outward-rounded angle constants and batched libm enclosures (one rounding-mode switch for
+// many calls). Not for users.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/detail/fenv.hpp"
+#include "certipose/interval/operations.hpp"
+
+namespace certipose::detail::orientation {
+
+// The double nearest π is below π; its successor is above.
+inline constexpr double pi_lo = std::numbers::pi;
+inline const double pi_hi = std::nextafter(std::numbers::pi, 4.0);
+inline constexpr double half_pi_lo = std::numbers::pi / 2;  // exact halving: still below π/2
+inline const double half_pi_hi = std::nextafter(std::numbers::pi / 2, 4.0);
+
+/// Bounds of a real function over an interval, as doubles.
+struct bounds {
+    double lo, hi;
+};
+
+// Outward widening of a libm result by more than `transcendental_ulps` (2) ulps, cheaper than
+// nextafter: for finite x, ulp(x) ≤ ε|x|, so subtracting 4ε|x| (an exact power-of-two scaling)
+// plus 16 subnormal ulps moves x down by at least 3.5 ulps after the subtraction's own rounding
+// to nearest (the scope every caller holds). Results here are at most a few units in magnitude.
+inline double widen_down(double x) noexcept {
+    static_assert(transcendental_ulps <= 3, "widen_down widens by 3.5 ulps at least");
+    return x - (std::abs(x) * 0x1p-50 + 0x1p-1070);
+}
+inline double widen_up(double x) noexcept { return x + (std::abs(x) * 0x1p-50 + 0x1p-1070); }
+
+/// Enclosure of { f(x) : x ∈ [l, u] } for f = sin (phase π/2) or cos (phase 0), whose extrema are
+/// at phase + kπ with value ±1. The same method as interval/detail/transcendental.hpp, but
+/// WITHOUT opening a rounding scope: the caller holds one `round_to_nearest_scope` for a whole
+/// batch of evaluations, because switching the mode costs ~100 ns, more than sin and cos
+/// together. Endpoint values are widened by `transcendental_ulps`; an extremum whose abscissa
+/// is within a tolerance larger than the error of phase + k·π is included, so none is missed.
+template <class F>
+bounds periodic_bounds_nearest(double l, double u, F f, double phase) {
+    constexpr double pi = std::numbers::pi;
+    // Huge arguments: k·π below would stop being exact (and k += 1 stop advancing).
+    constexpr double huge = 1e9;
+    if (!(std::abs(l) < huge && std::abs(u) < huge) || u - l >= 2.0 * pi - 1e-6) return {-1.0, 1.0};
+    const double fl = f(l), fu = f(u);
+    double lo = widen_down(std::min(fl, fu)), hi = widen_up(std::max(fl, fu));
+    const double k0 = std::floor((l - phase) / pi) - 1.0;
+    const double k1 = std::ceil((u - phase) / pi) + 1.0;
+    for (double k = k0; k <= k1; k += 1.0) {
+        const double t = phase + k * pi;
+        const double tol = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + pi);
+        if (t + tol < l || t - tol > u) continue;
+        const double value = std::fmod(std::abs(k), 2.0) == 0.0 ? 1.0 : -1.0;
+        lo = std::min(lo, value);
+        hi = std::max(hi, value);
+    }
+    return {std::max(lo, -1.0), std::min(hi, 1.0)};
+}
+inline bounds cos_bounds_nearest(double l, double u) {
+    return periodic_bounds_nearest(l, u, [](double x) { return std::cos(x); }, 0.0);
+}
+inline bounds sin_bounds_nearest(double l, double u) {
+    return periodic_bounds_nearest(l, u, [](double x) { return std::sin(x); }, std::numbers::pi / 2);
+}
+/// acos is decreasing on [−1, 1]; arguments are clamped to it (call inside a nearest scope).
+inline bounds acos_bounds_nearest(double l, double u) {
+    const double lo = widen_down(std::acos(std::clamp(u, -1.0, 1.0)));
+    const double hi = widen_up(std::acos(std::clamp(l, -1.0, 1.0)));
+    return {std::max(lo, 0.0), std::min(hi, pi_hi)};
+}
+/// atan is increasing (call inside a nearest scope).
+inline bounds atan_bounds_nearest(double l, double u) {
+    return {widen_down(std::atan(l)), widen_up(std::atan(u))};
+}
+
+template <Interval I>
+I to_interval(bounds b) {
+    return I(b.lo, b.hi);
+}
+
+}  // namespace certipose::detail::orientation

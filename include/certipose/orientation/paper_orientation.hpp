@@ -1,0 +1,460 @@
+// certipose/orientation/paper_orientation.hpp — the default OrientationPolicy: the paper's §6.4
+// orientation intervals, certified over the whole 6D box (DESIGN.md §4, Algorithm 3 l. 28–36).
+//
+// For a certified position box [p]:
+//  1. Nominal aim: the optical axis from the centre of [p] to the facet centroid gives φ_nom and
+//     γ_nom (axis R·ẑ = (sin φ sin γ, −cos φ sin γ, cos γ)); β_nom = 0.
+//  2. Allowable φ/γ offsets (§6.4.1): the facet vertices relative to [p] are expressed in the
+//     nominal camera frame ([D]_v, interval vectors over the whole box) and bounded by four
+//     hyperplanes through the camera centre — two containing the camera Y axis (left/right),
+//     two containing its X axis (up/down) — solved with HC4. We parametrise each plane by the
+//     tangent of its angle (x = tan a: X − x·Z ≥ 0) rather than by cos a / sin a, so the unknown
+//     occurs once per constraint and HC4Revise is exact on it. The pan/tilt that keep the
+//     bounded angles within the FOV half-angles are the offsets. A pan about the camera's Y axis
+//     is NOT an offset of φ: moving φ drags the axis along a circle of radius sin γ, so the φ
+//     offsets are the pan offsets divided by sin γ_nom (the paper adds them unscaled); moving
+//     γ tilts the axis by the same angle.
+//  3. Allowable β (§6.4.2): the projection constraints ℓ_k·Rz(−β)·[b]_v ≥ 0 (vertex inside
+//     each image side, division-free), [b]_v = Rx(−[γ])·Rz(−[φ])·([v] − [p]), contracted from
+//     [−π, π] with HC4 (and ACID when `beta_acid`; the paper uses both). That hull is an outer
+//     approximation, in practice the whole circle; past the paper it is narrowed to the arc of
+//     rolls about β = 0 that keeps every vertex inside the image at the nominal aim.
+//  4. Certification: the paper's box is an approximation (it bounds the vertices over some
+//     position of the box, and offsets of ZXZ angles are not camera-frame offsets), so the 6D
+//     box is proven with `certify_fov`, by internal subdivision when one evaluation is not
+//     enough (the hull of a certified tiling is certified). When that fails the box shrinks
+//     toward the nominal aim (halving, down to a box narrower than ε_o; β stays whole when the
+//     roll is free, since the roll-free cone test does not care), the largest certified scale
+//     is refined by bisection, and then each angle alone is widened back toward the paper's
+//     box as far as certification allows. So each position box yields one certified
+//     box, containing the nominal aim whenever the paper's box does, as wide as the search can
+//     certify — the installation tolerance in aim — or nothing, and the solver bisects [p].
+// Near the ZXZ singularity (γ_nom ≈ 0 or π, looking straight down or up the z axis) φ and β are
+// coupled (at γ = 0 only φ + β matters) and the φ offsets blow up as 1/sin γ: they are capped at
+// ±π. Boxes stay sound (certification bounds the axis by its angle from the pole there) but the
+// certified ones are often narrower, or need a smaller position box.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/contractor/acid.hpp"
+#include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/hc4.hpp"
+#include "certipose/error.hpp"
+#include "certipose/expr/constraint.hpp"
+#include "certipose/expr/expression.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/operations.hpp"
+#include "certipose/orientation/certify.hpp"
+#include "certipose/orientation/concept.hpp"
+#include "certipose/orientation/detail/spherical.hpp"
+#include "certipose/pose/pose_box.hpp"
+#include "certipose/pose/rotation.hpp"
+
+namespace certipose {
+
+/// The paper's nominal aim for a position box: the optical axis from the box centre to the
+/// facet centroid (γ ∈ [0, π], φ = 0 on the z axis where it is undetermined), β = 0. Nothing
+/// when the box centre is the centroid.
+template <Interval I>
+std::optional<zxz_angles> nominal_aim(const position_box<I>& position, const facet& f) {
+    if (is_empty(position)) return std::nullopt;
+    const auto m = midpoint(position);
+    const Eigen::Vector3d dir = f.centroid - Eigen::Vector3d(m[0], m[1], m[2]);
+    if (!(dir.squaredNorm() > 0.0) || !dir.allFinite()) return std::nullopt;
+    return zxz_angles_from_axis(dir);
+}
+
+/// Search settings of `paper_orientation` (defaults suit ε_o ≈ 0.1–0.4 rad).
+struct paper_orientation_options {
+    /// `certify_fov` evaluations allowed to prove one box by internal subdivision (1: none).
+    std::size_t tiling_budget = 8;
+    /// Bisection steps on the scale factor between the largest certified scale and the next.
+    int refine_steps = 2;
+    /// Afterwards, bisection steps widening each angle alone toward the paper's box (0: off).
+    int widen_steps = 1;
+    /// Hard cap of `certify_fov` evaluations per position box.
+    std::size_t max_certifications = 256;
+    /// Follow HC4 by ACID when contracting [β] (the paper's "HC4 and ACID"). Off by default:
+    /// it costs ~20× the HC4 pass (trigonometric shaving), and the hull it sharpens is an
+    /// outer approximation that certification decides anyway.
+    bool beta_acid = false;
+};
+
+namespace detail::orientation {
+
+// ---- §6.4.1: the four hyperplanes, x = tan(angle) of each plane in the nominal camera frame.
+// Box: (x_left, x_right, t_up, t_down). Params 3v, 3v+1, 3v+2: [D]_v's x, y, z.
+template <std::size_t V>
+auto hyperplane_constraints() {
+    constexpr var<0> x_left;
+    constexpr var<1> x_right;
+    constexpr var<2> t_up;
+    constexpr var<3> t_down;
+    const param<3 * V> dx{};
+    const param<3 * V + 1> dy{};
+    const param<3 * V + 2> dz{};
+    return std::tuple{dx - dz * x_left >= 0.0,   // right of the left plane
+                      dx - dz * x_right <= 0.0,  // left of the right plane
+                      dy - dz * t_up >= 0.0,     // below the upper plane (image y points down)
+                      dy - dz * t_down <= 0.0};  // above the lower plane
+}
+
+inline auto make_hyperplane_system() {
+    return std::apply([](auto... c) { return hc4(std::move(c)...); },
+                      std::tuple_cat(hyperplane_constraints<0>(), hyperplane_constraints<1>(),
+                                     hyperplane_constraints<2>()));
+}
+
+// ---- §6.4.2: the projection constraint in β for one (vertex, image side): ℓ·Rz(−β)·b ≥ 0.
+// Box: (β). Params 0–2: [b]_v, 3–5: ℓ_k. All twelve (vertex, side) pairs share this one
+// constraint type with different parameters, so HC4's propagation over them is a loop (below)
+// instead of twelve template instantiations of a trigonometric tree (compile time).
+inline auto make_beta_constraint() {
+    constexpr var<0> b;
+    const param<0> bx{};
+    const param<1> by{};
+    const param<2> bz{};
+    const param<3> lx{};
+    const param<4> ly{};
+    const param<5> lz{};
+    // q = Rz(−β)·b; ℓ·q ≥ 0.
+    return hc4(lx * (cos(b) * bx + sin(b) * by) + ly * (cos(b) * by - sin(b) * bx) + lz * bz >= 0.0);
+}
+
+template <std::size_t Id, class C, Interval I>
+void set_interval_param(C& c, const I& v) {
+    c.template set_param<Id>(lower(v), upper(v));
+}
+
+template <class C, Interval I, std::size_t... Is>
+void set_params(C& c, const std::array<I, sizeof...(Is)>& values, std::index_sequence<Is...>) {
+    (set_interval_param<Is>(c, values[Is]), ...);
+}
+
+/// The twelve projection constraints of §6.4.2 as one `Contractor` of the box (β): HC4's
+/// propagation, i.e. each constraint revised in turn until [β] narrows by less than HC4's ratio
+/// in a whole round (one variable, so every constraint is requeued after any narrowing).
+template <Interval I>
+class beta_projection {
+public:
+    using certipose_contractor = void;
+
+    beta_projection(const std::array<std::array<I, 3>, 3>& b, const std::array<std::array<I, 3>, 4>& sides)
+        : b_(b), sides_(sides) {}
+
+    void contract(interval_box<I, 1>& box) const {
+        for (int round = 0; round < 32 && !is_empty(box); ++round) {
+            const double before = width(box[0]);
+            for (std::size_t vk = 0; vk < 12 && !is_empty(box); ++vk) {
+                const auto& bv = b_[vk / 4];
+                const auto& l = sides_[vk % 4];
+                const std::array<I, 6> values{bv[0], bv[1], bv[2], l[0], l[1], l[2]};
+                set_params(c_, values, std::make_index_sequence<6>{});
+                c_.contract(box);
+            }
+            if (is_empty(box) || !(width(box[0]) < (1.0 - c_.ratio()) * before)) break;
+        }
+    }
+
+private:
+    using hc4_type = decltype(make_beta_constraint());
+    std::array<std::array<I, 3>, 3> b_;
+    std::array<std::array<I, 3>, 4> sides_;
+    mutable hc4_type c_ = make_beta_constraint();  // parameters are rewritten on every call
+};
+
+/// The rolls β ∈ [lo, hi] ∋ 0 such that, at the aim (φ, γ) and for every position of the box,
+/// every vertex stays inside the image: with b = (Rz(φ)Rx(γ))ᵀ(v − p) over the position box
+/// (a box about its centre c with half-extents e), side k holds for all p iff
+/// (Rz(β)ℓ_k)·c − Σ_j |(Rz(β)ℓ_k)_j|·e_j ≥ 0. Walked out from 0 in steps of π/32, then refined
+/// by bisection. Plain double: a starting point for the search, which certification decides.
+/// Nothing when β = 0 itself fails; [−π, π] when every roll works.
+template <Interval I>
+std::optional<std::pair<double, double>> roll_arc(const position_box<I>& position, const facet& f, const zxz_angles& aim,
+                                                  const fov_frustum<I>& frustum) {
+    const certipose::detail::round_to_nearest_scope nearest{};
+    const Eigen::Matrix3d r = zxz_rotation(aim.phi, aim.gamma, 0.0);
+    const auto p0 = midpoint(position);
+    const Eigen::Vector3d rad(radius(position[0]), radius(position[1]), radius(position[2]));
+    std::array<Eigen::Vector3d, 3> c, e;
+    for (std::size_t v = 0; v < 3; ++v) {
+        c[v] = r.transpose() * (f.v[v] - Eigen::Vector3d(p0[0], p0[1], p0[2]));
+        e[v] = r.transpose().cwiseAbs() * rad;
+    }
+    std::array<Eigen::Vector3d, 4> l;
+    for (std::size_t k = 0; k < 4; ++k)
+        for (int j = 0; j < 3; ++j) l[k][j] = mid(frustum.sides()[k].l[static_cast<std::size_t>(j)]);
+    const auto fits = [&](double beta) {
+        const double cb = std::cos(beta), sb = std::sin(beta);
+        for (const auto& lk : l) {
+            const Eigen::Vector3d m(cb * lk.x() - sb * lk.y(), sb * lk.x() + cb * lk.y(), lk.z());
+            for (std::size_t v = 0; v < 3; ++v)
+                if (m.dot(c[v]) - m.cwiseAbs().dot(e[v]) < 0.0) return false;
+        }
+        return true;
+    };
+    if (!fits(0.0)) return std::nullopt;
+    const auto reach = [&](double sign) {
+        constexpr double step = std::numbers::pi / 32;
+        double ok = 0.0;
+        for (int i = 1; i <= 32; ++i) {
+            const double t = i * step;
+            if (!fits(sign * t)) {
+                double bad = t;
+                for (int j = 0; j < 4; ++j) {
+                    const double m = 0.5 * (ok + bad);
+                    (fits(sign * m) ? ok : bad) = m;
+                }
+                return ok;
+            }
+            ok = t;
+        }
+        return std::numbers::pi;
+    };
+    const double up = reach(1.0), down = reach(-1.0);
+    if (up + down >= 2 * std::numbers::pi - 1e-9) return std::pair{-pi_lo, pi_lo};
+    return std::pair{-down, up};
+}
+
+}  // namespace detail::orientation
+
+/// The box of §6.4 before certification: [φ], [γ] from the four-hyperplane system (HC4) and
+/// [β] from the projection constraints (HC4, then ACID if asked), narrowed to the roll arc
+/// about β = 0 that fits at the nominal aim. Nothing when the facet cannot fit the field of
+/// view from every position of the box (the hyperplanes are farther apart than the FOV, or a
+/// vertex may lie beside or behind the nominal camera). Not certified.
+template <Interval I>
+std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f,
+                                                  const fov_half_angles& fov, const fov_frustum<I>& frustum,
+                                                  bool beta_acid = false) {
+    using namespace detail::orientation;
+    const auto aim = nominal_aim(position, f);
+    if (!aim || is_empty(position)) return std::nullopt;
+    const rounding_guard<I> guard{};
+    const Eigen::Matrix3d r0 = zxz_rotation(aim->phi, aim->gamma, 0.0);
+
+    // [D]_v = R_nomᵀ·(v − [p]) over the whole position box.
+    std::array<I, 9> dv{};
+    for (std::size_t v = 0; v < 3; ++v) {
+        const std::array<I, 3> d{I(f.v[v].x()) - position[0], I(f.v[v].y()) - position[1],
+                                 I(f.v[v].z()) - position[2]};
+        for (std::size_t r = 0; r < 3; ++r)
+            dv[3 * v + r] = I(r0(0, r)) * d[0] + I(r0(1, r)) * d[1] + I(r0(2, r)) * d[2];
+        if (!(lower(dv[3 * v + 2]) > 0.0)) return std::nullopt;  // beside or behind the nominal camera
+    }
+    auto planes = make_hyperplane_system();
+    set_params(planes, dv, std::make_index_sequence<9>{});
+    constexpr double big = 1e6;  // any plane angle in (−π/2, π/2)
+    interval_box<I, 4> x = interval_box<I, 4>::from_bounds({{{-big, big}, {-big, big}, {-big, big}, {-big, big}}});
+    planes.contract(x);
+    if (is_empty(x)) return std::nullopt;
+
+    // Pan Δh keeps every horizontal angle h in [Δh − α_h, Δh + α_h]: Δh ∈ [a_right − α_h,
+    // a_left + α_h] (the best planes HC4 allows); the same for tilt.
+    bounds left, right, up, down;
+    {
+        const certipose::detail::round_to_nearest_scope nearest{};
+        left = atan_bounds_nearest(upper(x[0]), upper(x[0]));
+        right = atan_bounds_nearest(lower(x[1]), lower(x[1]));
+        up = atan_bounds_nearest(upper(x[2]), upper(x[2]));
+        down = atan_bounds_nearest(lower(x[3]), lower(x[3]));
+    }
+    const double pan_lo = right.lo - fov.horizontal, pan_hi = left.hi + fov.horizontal;
+    const double tilt_lo = down.lo - fov.vertical, tilt_hi = up.hi + fov.vertical;
+    if (!(pan_lo <= pan_hi) || !(tilt_lo <= tilt_hi)) return std::nullopt;
+
+    // Pan moves the axis along e₁ by sin γ·Δφ; tilt toward +y (down) is −Δγ.
+    const double s = std::sin(aim->gamma);
+    const double phi_lo = s > 0 ? std::max(-pi_lo, pan_lo / s) : -pi_lo;
+    const double phi_hi = s > 0 ? std::min(pi_lo, pan_hi / s) : pi_lo;
+    orientation_box<I> box;
+    box[0] = I(aim->phi + phi_lo, aim->phi + phi_hi);
+    box[1] = I(aim->gamma - tilt_hi, aim->gamma - tilt_lo);
+
+    // [b]_v = Rx(−[γ])·Rz(−[φ])·(v − [p]) and the four image sides ℓ_k.
+    const I sp = sin(box[0]), cp = cos(box[0]), sg = sin(box[1]), cg = cos(box[1]);
+    std::array<std::array<I, 3>, 3> bv{};
+    for (std::size_t v = 0; v < 3; ++v) {
+        const std::array<I, 3> d{I(f.v[v].x()) - position[0], I(f.v[v].y()) - position[1],
+                                 I(f.v[v].z()) - position[2]};
+        const I cx = cp * d[0] + sp * d[1], cy = cp * d[1] - sp * d[0];
+        bv[v] = {cx, cg * cy + sg * d[2], cg * d[2] - sg * cy};
+    }
+    std::array<std::array<I, 3>, 4> sides{};
+    for (std::size_t k = 0; k < 4; ++k) sides[k] = frustum.sides()[k].l;
+    const beta_projection<I> beta(bv, sides);
+    interval_box<I, 1> b = interval_box<I, 1>::from_bounds({{{-pi_lo, pi_lo}}});
+    beta.contract(b);
+    if (beta_acid && !is_empty(b)) acid(beta).contract(b);
+    if (is_empty(b)) return std::nullopt;
+    // HC4's [β] is an outer approximation over the whole box of positions and aims, in
+    // practice the whole circle. Past the paper: intersect it with the arc of rolls about β = 0
+    // that keeps every vertex inside the image from every position at the nominal aim.
+    const auto arc = roll_arc(position, f, *aim, frustum);
+    if (arc) {
+        const I narrowed = intersect(b[0], I(arc->first, arc->second));
+        if (!is_empty(narrowed)) b[0] = narrowed;
+    }
+    box[2] = b[0];
+    return box;
+}
+
+/// Same, for any camera model.
+template <Interval I, CameraModel C>
+std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f, const C& camera,
+                                                  bool beta_acid = false) {
+    return paper_candidate(position, f, camera.fov_half_angles(), fov_frustum<I>(camera), beta_acid);
+}
+
+/// The default orientation policy (see the header comment). Stateless: `orient` is const and
+/// one object may serve several threads.
+class paper_orientation {
+public:
+    paper_orientation() = default;
+    explicit paper_orientation(paper_orientation_options options) : options_(options) {
+        if (options_.tiling_budget == 0)
+            throw invalid_argument("tiling_budget", "paper_orientation: tiling_budget must be at least 1");
+        if (options_.refine_steps < 0 || options_.widen_steps < 0)
+            throw invalid_argument("refine_steps", "paper_orientation: refine_steps and widen_steps must be >= 0");
+        if (options_.max_certifications == 0)
+            throw invalid_argument("max_certifications", "paper_orientation: max_certifications must be at least 1");
+    }
+
+    const paper_orientation_options& options() const noexcept { return options_; }
+
+    /// Certified orientation boxes for `position` (at most one; see the header comment).
+    /// Throws invalid_argument("orientation_eps") unless ε_o is positive and finite, and
+    /// invalid_argument("position_box") for a non-finite box.
+    template <Interval I, CameraModel C>
+    orientation_result<I> orient(const position_box<I>& position, const facet& f, const C& camera,
+                                 double orientation_eps) const {
+        if (!(orientation_eps > 0.0) || !std::isfinite(orientation_eps))
+            throw invalid_argument("orientation_eps", "paper_orientation: orientation_eps must be positive and finite, got " +
+                                                          std::to_string(orientation_eps));
+        orientation_result<I> out;
+        if (is_empty(position)) return out;
+        if (!detail::orientation::finite_box(position))
+            throw invalid_argument("position_box", "paper_orientation: the position box must be finite");
+        detail::orientation::check_facet(f);
+        const rounding_guard<I> guard{};
+        const fov_frustum<I> frustum(camera);
+        const auto aim = nominal_aim(position, f);
+        const auto cand = paper_candidate(position, f, camera.fov_half_angles(), frustum, options_.beta_acid);
+        if (!aim || !cand) return out;
+
+        const std::array<double, 3> nominal{aim->phi, aim->gamma, aim->beta};
+        std::array<double, 3> centre = nominal;
+        if (!contains(*cand, nominal)) centre = midpoint(*cand);
+        const auto certified = [&](const orientation_box<I>& b) {
+            return certify_tiled(position, b, f, frustum, out.certifications);
+        };
+        const auto budget_left = [&] { return out.certifications < options_.max_certifications; };
+
+        // The paper's box shrunk toward the centre by s; β kept whole when `roll_free` (the
+        // roll-free cone does not care how wide β is, so shrinking it would be wasted).
+        const auto search = [&](bool roll_free) -> std::optional<orientation_box<I>> {
+            const auto scaled = [&](double s) {
+                orientation_box<I> b;
+                for (std::size_t j = 0; j < 3; ++j)
+                    b[j] = roll_free && j == 2 ? (*cand)[2]
+                                               : I(centre[j] + s * (lower((*cand)[j]) - centre[j]),
+                                                   centre[j] + s * (upper((*cand)[j]) - centre[j]));
+                return b;
+            };
+            const auto narrow = [&](const orientation_box<I>& b) {  // every shrunk angle below ε_o
+                for (std::size_t j = 0; j < 3; ++j)
+                    if (!(roll_free && j == 2) && width(b[j]) >= orientation_eps) return false;
+                return true;
+            };
+            std::optional<orientation_box<I>> best;
+            double s_ok = 1.0, s_fail = 1.0;
+            if (certified(*cand)) return *cand;
+            // Halve toward the centre until certified, or until the box is narrower than ε_o.
+            for (double s = 0.5; budget_left() && s > 1e-6; s *= 0.5) {
+                const auto b = scaled(s);
+                if (certified(b)) {
+                    best = b, s_ok = s, s_fail = 2 * s;
+                    break;
+                }
+                if (narrow(b)) break;
+            }
+            if (!best) return std::nullopt;
+            for (int i = 0; i < options_.refine_steps && budget_left(); ++i) {
+                const double s = 0.5 * (s_ok + s_fail);
+                const auto b = scaled(s);
+                if (certified(b)) best = b, s_ok = s;
+                else s_fail = s;
+            }
+            // Widen each angle alone toward the paper's box (β first: it is often free).
+            for (const std::size_t j : {std::size_t{2}, std::size_t{0}, std::size_t{1}}) {
+                if (best->x[j] == (*cand)[j]) continue;
+                double lo = s_ok, hi = 1.0;
+                for (int i = 0; i <= options_.widen_steps && budget_left(); ++i) {
+                    const double s = i == 0 ? hi : 0.5 * (lo + hi);
+                    auto b = *best;
+                    b[j] = I(centre[j] + s * (lower((*cand)[j]) - centre[j]), centre[j] + s * (upper((*cand)[j]) - centre[j]));
+                    if (certified(b)) {
+                        best = b, lo = s;
+                        if (i == 0) break;
+                    } else {
+                        hi = s;
+                    }
+                }
+            }
+            return best;
+        };
+
+        const bool whole_roll = width((*cand)[2]) >= 2 * detail::orientation::pi_lo;
+        std::optional<orientation_box<I>> best = search(whole_roll);
+        if (!best && whole_roll && budget_left()) best = search(false);  // not roll-free after all
+        if (!best) return out;
+        out.boxes.push_back(*best);
+        return out;
+    }
+
+    /// Proves `box` by `certify_fov`, splitting it while undecided (at most `tiling_budget`
+    /// evaluations; β spanning π or more is never split: the roll-free cone test does not
+    /// improve on halves of it). True when every tile is certified.
+    template <Interval I>
+    bool certify_tiled(const position_box<I>& position, const orientation_box<I>& box, const facet& f,
+                       const fov_frustum<I>& frustum, std::size_t& certifications) const {
+        std::vector<orientation_box<I>> stack{box};
+        std::size_t used = 0;
+        while (!stack.empty()) {
+            const orientation_box<I> b = stack.back();
+            stack.pop_back();
+            if (used >= options_.tiling_budget) return false;
+            ++used, ++certifications;
+            const verdict v = certify_fov(position, b, f, frustum);
+            if (v == verdict::satisfied) continue;
+            if (v == verdict::violated) return false;
+            if (width(b[2]) >= detail::orientation::pi_lo) return false;
+            const std::size_t k = widest_dimension(b);
+            const auto [l, r] = bisect_at(b, k, split_point(b[k]));
+            if (!(lower(b[k]) < upper(l[k]) && upper(l[k]) < upper(b[k]))) return false;  // cannot split
+            stack.push_back(r);
+            stack.push_back(l);
+        }
+        return true;
+    }
+
+private:
+    paper_orientation_options options_{};
+};
+
+}  // namespace certipose

@@ -1,0 +1,103 @@
+// Shared by the solver test files: the sampling check of VALID boxes against every constraint
+// of DESIGN.md §3 with the independent plain-double evaluator and ray caster
+// (verify/point_check.hpp). The solver tests are split over three translation units because
+// each pipeline instantiation costs a lot to optimise at -O2 and two cores build them in parallel.
+#pragma once
+#include <doctest/doctest.h>
+
+#include <random>
+#include <set>
+#include <tuple>
+
+#include <certipose/bisection/round_robin.hpp>
+#include <certipose/camera.hpp>
+#include <certipose/geometry/sample_part.hpp>
+#include <certipose/interval/boost_interval.hpp>
+#include <certipose/interval/cgal_interval.hpp>
+#include <certipose/io/read_mesh.hpp>
+#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
+#include <certipose/occlusion/no_occlusion.hpp>
+#include <certipose/solver/pose_solver.hpp>
+#include <certipose/verify/point_check.hpp>
+
+using namespace certipose;
+
+namespace solver_test {
+
+inline thin_lens_parameters design_camera_parameters() {
+    return {.focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
+            .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048};
+}
+
+inline const sample_part& part() {
+    static const sample_part p = make_sample_part();
+    return p;
+}
+
+struct sampling_report {
+    std::size_t valid_boxes = 0, samples = 0, violations = 0;
+};
+
+/// Samples `per_box` random poses in every VALID box and checks them against everything.
+template <class I, CameraModel Camera>
+sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh& mesh, const Camera& camera,
+                                  distance_range range, double min_view_angle, std::size_t per_box,
+                                  std::uint32_t seed) {
+    sampling_report rep;
+    const facet& f = mesh.facet(r.facet_index);
+    const auto all = verify::occluders::of(mesh, r.facet_index);
+    const verify::camera_view view{camera.intrinsics(), camera.width_px(), camera.height_px(), range.min, range.max};
+    std::mt19937 rng(seed);
+    const auto draw = [&](const I& x) { return std::uniform_real_distribution<double>(lower(x), upper(x))(rng); };
+    std::vector<Eigen::Vector3d> bary;
+    for (int k = 0; k < 8; ++k) {
+        double a = std::uniform_real_distribution<double>(0, 1)(rng), b = std::uniform_real_distribution<double>(0, 1)(rng);
+        if (a + b > 1) a = 1 - a, b = 1 - b;
+        bary.emplace_back(1 - a - b, a, b);
+    }
+    const auto targets = verify::facet_targets(f, bary);
+    for (const auto& cb : r.boxes) {
+        if (cb.cls != box_class::valid) continue;
+        ++rep.valid_boxes;
+        Eigen::AlignedBox3d region = f.bbox;
+        region.extend(Eigen::Vector3d(lower(cb.box.position[0]), lower(cb.box.position[1]), lower(cb.box.position[2])));
+        region.extend(Eigen::Vector3d(upper(cb.box.position[0]), upper(cb.box.position[1]), upper(cb.box.position[2])));
+        const auto near = all.within(region);
+        for (std::size_t k = 0; k < per_box; ++k) {
+            verify::pose x;
+            for (int d = 0; d < 3; ++d) x.position[d] = draw(cb.box.position[d]);
+            x.phi = draw(cb.box.orientation[0]);
+            x.gamma = draw(cb.box.orientation[1]);
+            x.beta = draw(cb.box.orientation[2]);
+            const auto v = verify::check_pose(x, f, view, min_view_angle, &near, targets);
+            ++rep.samples;
+            if (v.any()) {
+                ++rep.violations;
+                if (rep.violations <= 3)
+                    MESSAGE("violation (" << v.describe() << ") at p = " << x.position.transpose() << ", angles "
+                                          << x.phi << " " << x.gamma << " " << x.beta);
+            }
+        }
+    }
+    return rep;
+}
+
+/// A deterministic facet a camera above the part can see: among facets facing up (normal z >
+/// 0.7), the highest one (centroid z), lowest index on ties. (The largest upward facet is a bad
+/// choice: on idler_riser it is a long sliver too long for any certified box at ε_p = 0.1 m.)
+inline std::size_t upward_facet(const triangle_mesh& mesh) {
+    std::size_t best = mesh.num_faces();
+    for (std::size_t i = 0; i < mesh.num_faces(); ++i) {
+        const facet& f = mesh.facet(i);
+        if (f.normal.z() > 0.7 && (best == mesh.num_faces() || f.centroid.z() > mesh.facet(best).centroid.z() + 1e-9))
+            best = i;
+    }
+    REQUIRE(best < mesh.num_faces());
+    return best;
+}
+
+template <class Occlusion, class I = boost_interval>
+using default_solver = pose_solver<I, thin_lens_camera, paper_position_constraints, hc4_contraction, largest_first, Occlusion>;
+
+}  // namespace solver_test
+
