@@ -449,8 +449,12 @@ TEST_CASE("a cube: front, behind, edge-on and in-plane boxes") {
     CHECK(both(box3(V(0.2, 0.2, -2), V(0.8, 0.8, -1))) == std::pair{visibility::occluded, visibility::occluded});
     // Straddling the facet plane: some positions see it, others are behind it.
     CHECK(both(box3(V(2, 0.2, 0.5), V(3, 0.8, 1.5))) == std::pair{visibility::partial, visibility::partial});
-    // A flat box in the plane of the top face (edge-on everywhere): never visible.
-    CHECK(both(box3(V(2, 0, 1), V(3, 1, 1))).first == visibility::partial);
+    // A flat box in the plane of the top face, beside it: every sight line to the facet's
+    // interior crosses the facet's edge, i.e. a neighbour triangle. The boolean test has no
+    // volume to work with (H is flat) and says partial.
+    CHECK(both(box3(V(2, 0, 1), V(3, 1, 1))) == std::pair{visibility::occluded, visibility::partial});
+    // A flat box in that plane overlapping the facet itself: undecided.
+    CHECK(both(box3(V(0.5, 0.1, 1), V(3, 0.2, 1))).first == visibility::partial);
     // One ulp above that plane: every sight line skims the top face but is free.
     const double z = std::nextafter(1.0, 2.0);
     const auto skim = both(box3(V(2, 0, z), V(3, 1, z)));
@@ -479,12 +483,56 @@ TEST_CASE("occluders: a slab that hides the facet, one that hides part of it, on
     // A large slab between, placed so that its faces' diagonals pass far from the sight
     // lines: one triangle then holds all 24 corner–vertex crossings (aabb's certificate).
     CHECK(run(cuboid(V(-0.5, -5, 2), V(10, 5, 2.1))) == std::pair{visibility::occluded, visibility::occluded});
+    // The same slab centred: the diagonals of its faces now cut through the sight lines, so no
+    // single triangle holds every crossing — the planar-wall certificate (all the slab's
+    // triangles in one plane) still proves occlusion.
+    CHECK(run(cuboid(V(-5, -5, 2), V(5, 5, 2.1))) == std::pair{visibility::occluded, visibility::occluded});
+    // A frame of four bars (four occluders) with a small window in the middle of the sight
+    // lines: the bars' bottom faces lie in one plane, but their union has a hole there, so no
+    // wall certificate may hold.
+    {
+        const std::vector<triangle_mesh> frame{cuboid(V(-5, -5, 2), V(5, 0.4, 2.1)), cuboid(V(-5, 0.5, 2), V(5, 5, 2.1)),
+                                               cuboid(V(-5, 0.4, 2), V(0.4, 0.5, 2.1)), cuboid(V(0.5, 0.4, 2), V(5, 0.5, 2.1))};
+        const aabb_occlusion fast(cube, frame);
+        const boolean_occlusion exact(cube, frame);
+        const visibility a = fast.classify(cam, top), e = exact.classify(cam, top);
+        CHECK(a == visibility::partial);
+        CHECK(e != visibility::occluded);
+        std::vector<const triangle_mesh*> scene{&cube};
+        for (const auto& b : frame) scene.push_back(&b);
+        const segment_sampler S(scene);
+        std::mt19937_64 rng(4);
+        const int through = samples_per_answer - S.blocked(cam, top, samples_per_answer, 1e-9, rng);
+        CHECK(through > 0);  // some sight lines do pass through the window
+        CHECK(confirmed(S, cam, top, e, rng, "boolean_occlusion"));
+    }
     // A small plate over half of the facet: partial for both.
     CHECK(run(cuboid(V(-0.5, -0.5, 2), V(0.5, 1.5, 2.1))) == std::pair{visibility::partial, visibility::partial});
     // A block resting against the cube (sharing its x = 1 face) below the facet plane.
     CHECK(run(cuboid(V(1, 0, 0), V(2, 1, 1))) == std::pair{visibility::visible, visibility::visible});
     // A block that touches the top face's plane along the facet's far edge, outside the hull.
     CHECK(run(cuboid(V(1, -1, 1), V(2, 2, 1.5))).first == visibility::visible);
+}
+
+TEST_CASE("the sample part's facet of interest behind its boss: a wall touching the facet") {
+    // The facet shares an edge with the boss's west wall. A low box east of the boss sees the
+    // facet only through the boss: every sight line crosses a wall plane that contains the
+    // facet's edge (the facet touches the wall plane instead of lying strictly across it).
+    const auto part = make_sample_part();
+    const std::size_t foi = part.facet_of_interest;
+    const aabb_occlusion fast(part.mesh);
+    const boolean_occlusion exact(part.mesh);
+    const segment_sampler S({&part.mesh});
+    std::mt19937_64 rng(9);
+    const double z = part.mesh.facet(foi).v[0].z();
+    const box3 hidden(V(0.45, -0.05, std::nextafter(z, 1.0)), V(0.55, 0.05, 0.15));
+    const box3 above(V(-0.1, -0.05, 0.4), V(0.0, 0.05, 0.5));  // west of the boss, high
+    CHECK(fast.classify(hidden, foi) == visibility::occluded);
+    CHECK(exact.classify(hidden, foi) == visibility::occluded);
+    CHECK(confirmed(S, hidden, foi, visibility::occluded, rng, "test"));
+    CHECK(fast.classify(above, foi) == visibility::visible);
+    CHECK(exact.classify(above, foi) == visibility::visible);
+    CHECK(confirmed(S, above, foi, visibility::visible, rng, "test"));
 }
 
 TEST_CASE("facets with coplanar neighbours and boxes at grazing angles agree with sampling") {

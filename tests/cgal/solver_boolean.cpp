@@ -31,8 +31,9 @@ TEST_CASE("boolean and aabb occlusion certify the same position boxes on a small
         return s;
     };
     CHECK(valid_set(fast) == valid_set(exact));
-    // The boolean test may discard more (OCCLUDED where aabb says PARTIAL): never more BOUNDARY.
-    CHECK(exact.stats.boundary <= fast.stats.boundary);
+    // No order between the BOUNDARY counts is asserted: each policy may discard a box the other
+    // bisects (boolean: multi-plane occluders; aabb: walls touching the facet edge, where
+    // Algorithm 2's closed-facet contact says PARTIAL), so either count may be the larger.
     const auto rep = check_valid_boxes(exact, small.mesh, camera, default_solver<no_occlusion>(small.mesh, camera, task).range(),
                                        task.min_view_angle, 40, 3);
     MESSAGE("small part (" << small.mesh.num_faces() << " faces): aabb " << fast.stats.valid << "/" << fast.stats.boundary

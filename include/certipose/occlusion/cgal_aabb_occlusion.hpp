@@ -3,22 +3,23 @@
 //
 // The union of all sight lines from a position box B to the facet f is the convex hull
 // H = conv(B ∪ f). With B strictly in front of f's plane, H meets that plane exactly in f, so
-// the facet is VISIBLE from every point of B iff no other scene triangle meets H off the
-// facet plane (a triangle may touch H only inside f: the part's faces around f do). The test
-// walks a CGAL AABB tree over all scene triangles, pruning nodes outside one of H's planes or
-// behind f's plane, and decides each remaining triangle exactly: cheap double tests with
-// rigorous error bounds settle nearly every case (separating planes and axes prove a miss; a
-// triangle vertex strictly inside H or a corner–facet-vertex sight line crossing the triangle
-// proves a hit); the rest go to an exact rational clip of the triangle by H. Triangles that
-// share an edge with f are decided by one exact orientation against H's face through that
-// edge; those sharing only a vertex by exact cone tests with the same rational fallback.
-// OCCLUDED is answered from two exact certificates only — every box corner strictly behind f's
-// plane (with a closed outward part, every sight line to f's interior then runs inside the
-// part), or one scene triangle whose plane strictly separates B from f and which contains all
-// 24 corner–vertex sight-line crossings (then, by convexity, it blocks every sight line) — so
-// the policy may say PARTIAL where the boolean test says OCCLUDED, never the reverse of a
-// certified answer. A box touching or crossing f's plane is never VISIBLE (some of its points
-// see f edge-on or from behind).
+// the facet is VISIBLE from every point of B iff no other scene triangle meets H off the facet
+// plane (a triangle may touch H only inside f: the part's faces around f do). The test walks a
+// CGAL AABB tree over all scene triangles, pruning nodes outside one of H's planes or behind
+// f's plane, and decides each remaining triangle exactly: cheap double tests with rigorous error
+// bounds settle nearly every case (separating planes and axes prove a miss; a triangle vertex
+// strictly inside H or a corner–facet-vertex sight line crossing the triangle proves a hit);
+// triangles sharing an edge or a vertex with f get exact orientation and cone tests; what is
+// left is deferred to an exact rational clip of the triangle by H, run only if nothing else
+// blocks. OCCLUDED comes only from exact certificates: every corner strictly behind f's plane
+// (with a closed outward part, every sight line to f's interior then runs inside the part); no
+// corner in front and the box apart from f (in-plane positions see f's interior only across a
+// neighbour triangle); one scene triangle holding all 24 corner–vertex sight-line crossings;
+// or a planar wall — all scene triangles in one plane that separates the box from f cover
+// every crossing (see planar_wall_blocks). So the policy may say PARTIAL where the boolean test
+// says OCCLUDED, and never VISIBLE where a sight line is blocked nor OCCLUDED where one is free.
+// A box touching or crossing f's plane is never VISIBLE (some points see f edge-on or from
+// behind). docs/occlusion.md has the details and the measured speed.
 //
 // Built once per scene: validates every mesh as a closed solid (detail/cgal_scene.hpp), copies
 // the triangles and builds the tree. `classify` is const and thread-safe: one object may be
@@ -40,6 +41,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_3/Iso_cuboid_3_Triangle_3.h>
 
 #include <Eigen/Geometry>
 
@@ -50,6 +52,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -104,17 +107,41 @@ struct aabb_trace {
     std::size_t blocker = static_cast<std::size_t>(-1);  ///< a triangle that blocks, if any
 };
 
-/// Does triangle T block some sight line, i.e. meet H off the facet plane? Exact.
-inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, bool is_part,
-                   const scene_triangle& T, aabb_trace& trace) {
+/// Signs of the line a → b against the three directed edges of triangle w (orient3 of a, b
+/// and each edge). The line passes through the closed triangle iff the signs do not differ
+/// strictly; through its interior iff they are all equal and non-zero.
+inline std::array<int, 3> line_edge_signs(const pt& a, const pt& b, const std::array<pt, 3>& w) {
+    return {orient3(a, b, w[0], w[1]), orient3(a, b, w[1], w[2]), orient3(a, b, w[2], w[0])};
+}
+inline bool line_meets_closed_triangle(const pt& a, const pt& b, const std::array<pt, 3>& w) {
+    const auto o = line_edge_signs(a, b, w);
+    return !((o[0] > 0 || o[1] > 0 || o[2] > 0) && (o[0] < 0 || o[1] < 0 || o[2] < 0));
+}
+
+/// Tree-node pruning shared by the traversals: the node's box misses H's bounding box or lies
+/// strictly outside one of H's planes from `first_plane` on.
+inline bool node_outside_hull(const sight_hull& H, const pt& lo, const pt& hi, std::size_t first_plane) {
     for (int k = 0; k < 3; ++k)
-        if (T.hi[k] < H.lo[k] || T.lo[k] > H.hi[k]) return false;
+        if (hi[k] < H.lo[k] || lo[k] > H.hi[k]) return true;
+    for (std::size_t p = first_plane; p < H.num_planes; ++p)
+        if (box_strictly_outside(H.planes[p], lo, hi)) return true;
+    return false;
+}
+
+/// The fast decision whether triangle T blocks some sight line, i.e. meets H off the facet
+/// plane: `yes` and `no` are exact; `unsure` leaves it to the rational clip.
+enum class hit { no, yes, unsure };
+
+inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, bool is_part,
+                  const scene_triangle& T, aabb_trace& trace) {
+    for (int k = 0; k < 3; ++k)
+        if (T.hi[k] < H.lo[k] || T.lo[k] > H.hi[k]) return hit::no;
     ++trace.triangles_tested;
     const hplane& fp = H.facet_plane();
     std::array<int, 3> behind{};
     for (int m = 0; m < 3; ++m) behind[m] = side(fp, T.v[m]);
     // Entirely in the closed half-space behind the facet plane: T ∩ H lies in f.
-    if (behind[0] >= 0 && behind[1] >= 0 && behind[2] >= 0) return false;
+    if (behind[0] >= 0 && behind[1] >= 0 && behind[2] >= 0) return hit::no;
 
     // Adjacency with the facet (shared part vertices).
     int shared = 0;
@@ -124,10 +151,6 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
             for (int s = 0; s < 3; ++s)
                 if (T.id[m] == fid[s]) where[m] = s, ++shared;
 
-    const auto exact = [&] {
-        ++trace.exact_clips;
-        return triangle_meets_hull_front_exact(H, T.v);
-    };
     // T's own plane: sides of the 11 hull points (computed lazily, used by several tests).
     std::array<int, 11> tside{};
     bool have_tside = false;
@@ -149,15 +172,13 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
         for (int c = 0; c < 8; ++c)
             for (int q = 8; q < 11; ++q) {
                 if (tside[c] == 0 || tside[q] == 0 || tside[c] == tside[q]) continue;
-                const int o1 = orient3(H.pts[c], H.pts[q], T.v[0], T.v[1]);
-                const int o2 = orient3(H.pts[c], H.pts[q], T.v[1], T.v[2]);
-                const int o3 = orient3(H.pts[c], H.pts[q], T.v[2], T.v[0]);
-                if (o1 != 0 && o1 == o2 && o2 == o3) return true;
+                const auto o = line_edge_signs(H.pts[c], H.pts[q], T.v);
+                if (o[0] != 0 && o[0] == o[1] && o[1] == o[2]) return true;
             }
         return false;
     };
 
-    if (shared == 3) return true;  // a duplicate of the facet (invalid scene): be conservative
+    if (shared == 3) return hit::yes;  // a duplicate of the facet (invalid scene): be conservative
     if (shared == 2) {
         // Edge-adjacent: T = conv(e, w) with e a facet edge. H's face through e is planes[1+m]
         // for edge (f[m], f[m+1]); T meets H only in e iff w is strictly beyond that face, or
@@ -168,7 +189,7 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
         // e is traversed (a → b) by T; the facet traverses it b → a. Edge slot m has
         // f[m] → f[m+1].
         const int m = (b + 1) % 3 == a ? b : a;
-        return side(H.planes[1 + static_cast<std::size_t>(m)], T.v[w]) <= 0;
+        return side(H.planes[1 + static_cast<std::size_t>(m)], T.v[w]) <= 0 ? hit::yes : hit::no;
     }
     if (shared == 1) {
         // Vertex-adjacent: T ∩ H must be {v}. A plane of H through v with the other two
@@ -181,7 +202,7 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
         const pt& w2 = T.v[(vi + 2) % 3];
         for (std::size_t p = 0; p < H.num_planes; ++p) {
             const hplane& h = H.planes[p];
-            if (side(h, v) == 0 && side(h, w1) > 0 && side(h, w2) > 0) return false;
+            if (side(h, v) == 0 && side(h, w1) > 0 && side(h, w2) > 0) return hit::no;
         }
         t_sides();
         int pos = 0, neg = 0;
@@ -197,22 +218,22 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
             // that plane: decide whether the 2D cones of T and G at v meet beyond v. Two
             // pointed plane cones meet iff one holds a boundary ray of the other.
             for (int a = 0; a < nz; ++a)
-                if (in_cone2(v, w1, w2, H.pts[zeros[a]])) return true;
+                if (in_cone2(v, w1, w2, H.pts[zeros[a]])) return hit::yes;
             for (const pt* d : {&w1, &w2})
                 for (int a = 0; a < nz; ++a)
                     for (int b = a; b < nz; ++b)
-                        if (in_cone2(v, H.pts[zeros[a]], H.pts[zeros[b]], *d)) return true;
-            return false;
+                        if (in_cone2(v, H.pts[zeros[a]], H.pts[zeros[b]], *d)) return hit::yes;
+            return hit::no;
         }
-        if (witnessed()) return true;
-        return exact();
+        if (witnessed()) return hit::yes;
+        return hit::unsure;
     }
 
     // Not adjacent. Separating planes of H (exact for axis planes, rigorous for the rest).
     for (std::size_t p = 1; p < H.num_planes; ++p) {
         const hplane& h = H.planes[p];
         if (h.k != hplane::kind::axis) continue;
-        if (side(h, T.v[0]) > 0 && side(h, T.v[1]) > 0 && side(h, T.v[2]) > 0) return false;
+        if (side(h, T.v[0]) > 0 && side(h, T.v[1]) > 0 && side(h, T.v[2]) > 0) return hit::no;
     }
     const auto separated = [&](const pt& d, double hmin, double hmax) {
         double tmin = std::numeric_limits<double>::infinity(), tmax = -tmin;
@@ -225,7 +246,7 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
         return tmin > hmax || tmax < hmin;
     };
     for (std::size_t a = 0; a < H.num_face_axes; ++a)
-        if (separated(H.face_axes[a].d, H.face_axes[a].hmin, H.face_axes[a].hmax)) return false;
+        if (separated(H.face_axes[a].d, H.face_axes[a].hmin, H.face_axes[a].hmax)) return hit::no;
     const auto hull_range = [&](const pt& d, double& hmin, double& hmax) {
         hmin = std::numeric_limits<double>::infinity(), hmax = -hmin;
         for (const pt& x : H.pts) {
@@ -245,18 +266,27 @@ inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid,
         double hmin = 0, hmax = 0;
         const pt nt = cross(e1, e2);
         hull_range(nt, hmin, hmax);
-        if (separated(nt, hmin, hmax)) return false;
+        if (separated(nt, hmin, hmax)) return hit::no;
     }
-    if (witnessed()) return true;
+    if (witnessed()) return hit::yes;
     for (const pt* et : {&e1, &e2, &e3})
         for (std::size_t d = 0; d < H.num_edge_dirs; ++d) {
             const pt ax = cross(*et, H.edge_dirs[d]);
             if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0) continue;
             double hmin = 0, hmax = 0;
             hull_range(ax, hmin, hmax);
-            if (separated(ax, hmin, hmax)) return false;
+            if (separated(ax, hmin, hmax)) return hit::no;
         }
-    return exact();
+    return hit::unsure;
+}
+
+/// Does triangle T block some sight line? Exact: the fast decision, else the rational clip.
+inline bool blocks(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, bool is_part,
+                   const scene_triangle& T, aabb_trace& trace) {
+    const hit d = decide(H, fid, is_part, T, trace);
+    if (d != hit::unsure) return d == hit::yes;
+    ++trace.exact_clips;
+    return triangle_meets_hull_front_exact(H, T.v);
 }
 
 /// Certificate of full occlusion by one triangle: its plane strictly separates the box corners
@@ -274,11 +304,160 @@ inline bool blocks_every_sight_line(const sight_hull& H, const scene_triangle& T
         if (s[p] != -box_side) return false;
     for (int c = 0; c < 8; ++c)
         for (int q = 8; q < 11; ++q) {
-            const int o1 = orient3(H.pts[c], H.pts[q], T.v[0], T.v[1]);
-            const int o2 = orient3(H.pts[c], H.pts[q], T.v[1], T.v[2]);
-            const int o3 = orient3(H.pts[c], H.pts[q], T.v[2], T.v[0]);
-            if ((o1 > 0 || o2 > 0 || o3 > 0) && (o1 < 0 || o2 < 0 || o3 < 0)) return false;
+            if (!line_meets_closed_triangle(H.pts[c], H.pts[q], T.v)) return false;
         }
+    return true;
+}
+
+/// Does the segment (p0, p1) meet H off the facet plane? Exact. `v0` is true when p0 is a
+/// facet vertex (then the segment meets H beyond p0 iff p1 − p0 lies in H's tangent cone at p0,
+/// i.e. no plane of H through p0 has p1 strictly outside).
+inline bool segment_meets_hull_front(const sight_hull& H, const pt& p0, const pt& p1, bool v0) {
+    const hplane& fp = H.facet_plane();
+    if (side(fp, p0) >= 0 && side(fp, p1) >= 0) return false;  // in the closed back half-space
+    if (v0) {
+        for (std::size_t p = 0; p < H.num_planes; ++p)
+            if (side(H.planes[p], p0) == 0 && side(H.planes[p], p1) > 0) return false;
+        return true;  // p1 is strictly in front (above) and p1 − p0 points into H
+    }
+    const auto strictly_inside = [&](const pt& x) {
+        for (std::size_t p = 0; p < H.num_planes; ++p)
+            if (side(H.planes[p], x) >= 0) return false;
+        return true;
+    };
+    if (strictly_inside(p0) || strictly_inside(p1)) return true;  // then strictly in front too
+    for (std::size_t p = 1; p < H.num_planes; ++p)
+        if (side(H.planes[p], p0) > 0 && side(H.planes[p], p1) > 0) return false;
+    // Separating axes: H's face normals and segment × hull-edge directions (rigorous bounds).
+    const auto separated = [&](const pt& d, double hmin, double hmax) {
+        double e0 = 0, e1 = 0;
+        const double a = dot_from(d, p0, H.ref, e0), b = dot_from(d, p1, H.ref, e1);
+        return std::min(a - e0, b - e1) > hmax || std::max(a + e0, b + e1) < hmin;
+    };
+    for (std::size_t a = 0; a < H.num_face_axes; ++a)
+        if (separated(H.face_axes[a].d, H.face_axes[a].hmin, H.face_axes[a].hmax)) return false;
+    const pt e{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+    for (std::size_t d = 0; d < H.num_edge_dirs; ++d) {
+        const pt& g = H.edge_dirs[d];
+        const pt ax{e[1] * g[2] - e[2] * g[1], e[2] * g[0] - e[0] * g[2], e[0] * g[1] - e[1] * g[0]};
+        if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0) continue;
+        double hmin = std::numeric_limits<double>::infinity(), hmax = -hmin;
+        for (const pt& x : H.pts) {
+            double err = 0;
+            const double val = dot_from(ax, x, H.ref, err);
+            hmin = std::min(hmin, val - err), hmax = std::max(hmax, val + err);
+        }
+        if (separated(ax, hmin, hmax)) return false;
+    }
+    return triangle_meets_hull_front_exact(H, {p0, p1, p1});
+}
+
+/// Collects the scene triangles lying exactly in plane P near H (nodes strictly on one side of
+/// P or strictly outside H are pruned; what they hold can neither contain a sight-line crossing
+/// nor have an edge meeting H).
+struct coplanar_collector {
+    const sight_hull& H;
+    const aabb_scene& scene;
+    hplane P, P_flipped;
+    std::vector<std::size_t>& out;
+    bool overflow = false;
+    static constexpr std::size_t max_triangles = 512;
+
+    bool go_further() const { return !overflow; }
+
+    template <class Primitive>
+    void intersection(const sight_hull&, const Primitive& prim) {
+        const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
+        const scene_triangle& t = scene.tris[idx];
+        for (int k = 0; k < 3; ++k)
+            if (t.hi[k] < H.lo[k] || t.lo[k] > H.hi[k]) return;
+        if (side(P, t.v[0]) != 0 || side(P, t.v[1]) != 0 || side(P, t.v[2]) != 0) return;
+        if (out.size() >= max_triangles) overflow = true;
+        else out.push_back(idx);
+    }
+
+    template <class Node>
+    bool do_intersect(const sight_hull&, const Node& node) const {
+        const auto& b = node.bbox();
+        const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
+        if (box_strictly_outside(P, lo, hi) || box_strictly_outside(P_flipped, lo, hi)) return false;
+        return !node_outside_hull(H, lo, hi, 0);
+    }
+};
+
+/// Certificate of full occlusion by a planar wall: the plane P of triangle T has every box
+/// corner strictly on one side and the facet's vertices on the other side or on P (one
+/// strictly). Every sight line to the facet's interior then crosses P at a point of
+/// C' = (H ∩ P) minus the facet, a convex set. If no boundary edge of R — the union of the scene
+/// triangles lying in P — meets C', and one sight line crosses P inside R, then C' ⊆ R: every
+/// sight line to the facet's interior meets a scene triangle. (The box is strictly in front of
+/// the facet plane here.)
+/// The first part of planar_wall_blocks: the facet vertex strictly across T's plane from every
+/// box corner (with no facet vertex on the box side), or -1.
+inline int wall_plane_qualifies(const sight_hull& H, const scene_triangle& T) {
+    const int box_side = orient3(T.v[0], T.v[1], T.v[2], H.pts[0]);
+    if (box_side == 0) return -1;
+    for (int p = 1; p < 8; ++p)
+        if (orient3(T.v[0], T.v[1], T.v[2], H.pts[p]) != box_side) return -1;
+    int across = -1;
+    for (int p = 8; p < 11; ++p) {
+        const int sp = orient3(T.v[0], T.v[1], T.v[2], H.pts[p]);
+        if (sp == box_side) return -1;
+        if (sp == -box_side) across = p;
+    }
+    return across;
+}
+
+inline bool planar_wall_blocks(const sight_hull& H, const aabb_scene& scene, std::size_t facet,
+                               const scene_triangle& T) {
+    const int across = wall_plane_qualifies(H, T);
+    if (across < 0) return false;
+
+    std::vector<std::size_t> wall;
+    coplanar_collector col{H, scene, make_triple_plane(T.v[0], T.v[1], T.v[2], 1),
+                           make_triple_plane(T.v[0], T.v[1], T.v[2], -1), wall};
+    scene.tree.traversal(H, col);
+    if (col.overflow || wall.empty()) return false;
+
+    // One sight line (corner 0 → a facet vertex across P) crosses P inside R.
+    bool witness = false;
+    for (std::size_t i = 0; i < wall.size() && !witness; ++i)
+        witness = line_meets_closed_triangle(H.pts[0], H.pts[across], scene.tris[wall[i]].v);
+    if (!witness) return false;
+
+    // Boundary edges of R: edges used by exactly one triangle of R (vertex ids are unique
+    // across scene meshes).
+    std::vector<std::pair<std::uint64_t, std::array<std::size_t, 2>>> edges;  // key, (tri, slot)
+    edges.reserve(3 * wall.size());
+    for (std::size_t i = 0; i < wall.size(); ++i) {
+        const auto& id = scene.tris[wall[i]].id;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = id[k], b = id[(k + 1) % 3];
+            const std::uint64_t key = (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+            edges.push_back({key, {wall[i], static_cast<std::size_t>(k)}});
+        }
+    }
+    std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    const auto& fid = scene.tris[facet].id;
+    const auto is_facet_vertex = [&](std::uint32_t id) { return id == fid[0] || id == fid[1] || id == fid[2]; };
+    for (std::size_t i = 0; i < edges.size();) {
+        std::size_t j = i + 1;
+        while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+        if (j - i == 1) {
+            const auto& t = scene.tris[edges[i].second[0]];
+            const int k = static_cast<int>(edges[i].second[1]);
+            const bool part = edges[i].second[0] < scene.part_faces;
+            const bool f0 = part && is_facet_vertex(t.id[k]);
+            const bool f1 = part && is_facet_vertex(t.id[(k + 1) % 3]);
+            if (f0 && f1) {  // a facet edge: inside the facet
+            } else if (f1) {
+                if (segment_meets_hull_front(H, t.v[(k + 1) % 3], t.v[k], true)) return false;
+            } else if (segment_meets_hull_front(H, t.v[k], t.v[(k + 1) % 3], f0)) {
+                return false;
+            }
+        }
+        i = j;
+    }
     return true;
 }
 
@@ -291,15 +470,38 @@ struct hull_traversal {
     aabb_trace& trace;
     bool blocked = false;
 
-    bool go_further() const { return !blocked; }
+    /// Triangles the fast tests left undecided; decided exactly only if nothing else blocks
+    /// (a partial box usually has another blocking triangle with a cheap certificate).
+    std::vector<std::size_t> deferred{};
+    /// When set, walk everything and collect here every triangle that blocks or may block
+    /// (candidate walls for the occlusion certificate; no exact work), up to `max_collected`.
+    std::vector<std::size_t>* collect = nullptr;
+    static constexpr std::size_t max_collected = 256;
+
+    bool go_further() const { return collect ? collect->size() < max_collected : !blocked; }
 
     template <class Primitive>
     void intersection(const sight_hull&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
         if (idx == facet) return;
-        if (blocks(H, fid, idx < scene.part_faces, scene.tris[idx], trace)) {
+        const hit d = decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace);
+        if (d == hit::no) return;
+        if (collect) {
+            collect->push_back(idx);
+        } else if (d == hit::yes) {
             blocked = true;
             trace.blocker = idx;
+        } else {
+            deferred.push_back(idx);
+        }
+    }
+
+    /// After the walk: settle the deferred triangles exactly until one blocks.
+    void settle() {
+        for (std::size_t idx : deferred) {
+            if (blocked) return;
+            ++trace.exact_clips;
+            if (triangle_meets_hull_front_exact(H, scene.tris[idx].v)) blocked = true, trace.blocker = idx;
         }
     }
 
@@ -307,13 +509,9 @@ struct hull_traversal {
     bool do_intersect(const sight_hull&, const Node& node) const {
         const auto& b = node.bbox();
         const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
-        for (int k = 0; k < 3; ++k)
-            if (hi[k] < H.lo[k] || lo[k] > H.hi[k]) return false;
         // Entirely in the closed half-space behind the facet plane: nothing there blocks.
         if (box_outside_closed(H.facet_plane(), lo, hi)) return false;
-        for (std::size_t p = 1; p < H.num_planes; ++p)
-            if (box_strictly_outside(H.planes[p], lo, hi)) return false;
-        return true;
+        return !node_outside_hull(H, lo, hi, 1);
     }
 };
 
@@ -384,17 +582,69 @@ public:
             behind += s > 0, front += s < 0;
         }
         if (behind == 8) return visibility::occluded;  // facing away: inside the part
-        if (front < 8) return visibility::partial;     // edge-on or behind for some positions
+        if (front == 0) {
+            // Behind or in the facet plane. An in-plane position outside the facet sees its
+            // interior only across its boundary, i.e. across a neighbour triangle (closed part).
+            using P = epick::Point_3;
+            const epick::Triangle_3 tri(P(F.v[0][0], F.v[0][1], F.v[0][2]), P(F.v[1][0], F.v[1][1], F.v[1][2]),
+                                        P(F.v[2][0], F.v[2][1], F.v[2][2]));
+            const epick::Iso_cuboid_3 cub(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+            return CGAL::do_intersect(tri, cub) ? visibility::partial : visibility::occluded;
+        }
+        if (front < 8) return visibility::partial;  // edge-on or behind for some positions
 
         sight_hull H;
         build_sight_hull(lo, hi, F.v, H);
         hull_traversal tr{H, *scene_, facet, F.id, info};
         scene_->tree.traversal(H, tr);
+        tr.settle();
         if (info.exact_clips) scene_->exact_clips.fetch_add(info.exact_clips, std::memory_order_relaxed);
         if (!tr.blocked) return visibility::visible;
-        if (blocks_every_sight_line(H, scene_->tris[info.blocker])) return visibility::occluded;
+        const scene_triangle& first = scene_->tris[info.blocker];
+        if (blocks_every_sight_line(H, first) || planar_wall_blocks(H, *scene_, facet, first))
+            return visibility::occluded;
+        // Try the planes of the other blocking triangles (each distinct plane once).
+        std::vector<std::size_t> blockers;
+        hull_traversal all{H, *scene_, facet, F.id, info};
+        all.collect = &blockers;
+        scene_->tree.traversal(H, all);
+        const auto coplanar = [&](const scene_triangle& u, const scene_triangle& t) {
+            return orient3(u.v[0], u.v[1], u.v[2], t.v[0]) == 0 && orient3(u.v[0], u.v[1], u.v[2], t.v[1]) == 0 &&
+                   orient3(u.v[0], u.v[1], u.v[2], t.v[2]) == 0;
+        };
+        std::vector<std::size_t> tried{info.blocker}, in_plane;
+        for (std::size_t b : blockers) {
+            const scene_triangle& T = scene_->tris[b];
+            if (tried.size() > max_wall_planes) break;
+            const int across = wall_plane_qualifies(H, T);
+            if (across < 0) continue;
+            bool seen = false;
+            for (std::size_t t : tried) seen = seen || coplanar(scene_->tris[t], T);
+            if (seen) continue;
+            tried.push_back(b);
+            // Cheap necessary condition first: each corner's sight line to the facet vertex
+            // across the plane crosses a collected triangle of that plane (the only triangles
+            // of the plane that can meet H, unless the collection was cut short).
+            in_plane.clear();
+            for (std::size_t o : blockers)
+                if (coplanar(T, scene_->tris[o])) in_plane.push_back(o);
+            bool all_cross = true;
+            for (int c = 0; c < 8 && all_cross; ++c) {
+                bool crosses = false;
+                for (std::size_t o : in_plane)
+                    if (line_meets_closed_triangle(H.pts[c], H.pts[across], scene_->tris[o].v)) {
+                        crosses = true;
+                        break;
+                    }
+                all_cross = crosses;
+            }
+            if (all_cross && planar_wall_blocks(H, *scene_, facet, T)) return visibility::occluded;
+        }
         return visibility::partial;
     }
+
+    /// At most this many distinct planes of blocking triangles are tried as walls.
+    static constexpr std::size_t max_wall_planes = 8;
 
     /// Number of exact rational fallbacks taken so far by all copies (diagnostics).
     std::uint64_t exact_fallbacks() const noexcept {
