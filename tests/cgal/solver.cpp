@@ -34,7 +34,7 @@ TEST_CASE("real meshes: sampled poses in VALID boxes satisfy every constraint") 
         REQUIRE(r.stats.valid > 0);
         const std::size_t per_box = 10000 / r.stats.valid + 1;
         const auto rep = check_valid_boxes(r, mesh, camera, solver.range(), task.min_view_angle, per_box, 2);
-        MESSAGE(name << " facet " << id << ": " << r.stats.valid << " VALID, " << r.stats.boundary << " BOUNDARY; "
+        MESSAGE(std::string(name) << " facet " << id << ": " << r.stats.valid << " VALID, " << r.stats.boundary << " BOUNDARY; "
                      << rep.samples << " samples, " << rep.violations << " violations");
         CHECK(rep.samples >= 10000);
         CHECK(rep.violations == 0);

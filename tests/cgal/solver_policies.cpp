@@ -27,7 +27,7 @@ void swap_check(const char* what, const Camera& camera, std::uint32_t seed) {
     REQUIRE(r.stats.reason == termination::completed);
     CHECK(r.stats.valid > 0);
     const auto rep = check_valid_boxes(r, part().mesh, camera, solver.range(), task.min_view_angle, 20, seed);
-    MESSAGE(what << ": " << r.stats.valid << " VALID, " << r.stats.boundary << " BOUNDARY, " << rep.samples
+    MESSAGE(std::string(what) << ": " << r.stats.valid << " VALID, " << r.stats.boundary << " BOUNDARY, " << rep.samples
                  << " samples, " << rep.violations << " violations");
     CHECK(rep.violations == 0);
 }
