@@ -13,6 +13,7 @@
 #include <certipose/interval/boost_interval.hpp>
 #include <certipose/paver/paver.hpp>
 #include <certipose/pose/interval_box.hpp>
+#include <certipose/solver/task.hpp>
 
 #include <doctest/doctest.h>
 
@@ -271,6 +272,36 @@ TEST_CASE("bisector parameters are validated") {
     const auto b = box::from_bounds({{{0, 1}, {0, 1}, {0, 1}}});
     CHECK_THROWS_AS(largest_first(std::vector<double>{0.1, 0.1}).choose(b), certipose::invalid_argument);
     CHECK_THROWS_AS(round_robin(std::vector<double>{0.1, 0.1}).choose(b), certipose::invalid_argument);
+}
+
+// Error messages name the offending value in its shortest round-trip form (detail/format.hpp):
+// std::to_string would print 1e-09 as "0.000000" and hide it.
+TEST_CASE("error messages name tiny and non-finite values exactly") {
+    using certipose::detail::format_double;
+    CHECK(format_double(0.1) == "0.1");
+    CHECK(format_double(-1e-9) == "-1e-09");
+    CHECK(format_double(0.30000000000000004) == "0.30000000000000004");
+    CHECK(format_double(std::numeric_limits<double>::denorm_min()) == "5e-324");
+    CHECK(format_double(-std::numeric_limits<double>::infinity()) == "-inf");
+    CHECK(format_double(std::nan("")) == "nan");
+
+    const auto message = [](auto&& f) -> std::string {
+        try {
+            f();
+        } catch (const certipose::invalid_argument& e) {
+            return e.what();
+        }
+        return "<no exception>";
+    };
+    const auto names = [](const std::string& msg, const char* value) {
+        INFO(msg);
+        CHECK(msg.find(value) != std::string::npos);
+    };
+    names(message([] { certipose::solve_options{.position_eps = -1e-9}.validate(); }), "-1e-09");
+    names(message([] { certipose::solve_options{.orientation_eps = -2.5e-12}.validate(); }), "-2.5e-12");
+    names(message([] { certipose::inspection_task{.min_view_angle = -1e-300}.validate(); }), "-1e-300");
+    names(message([] { (void)largest_first(0.1, 1.0000000000000002); }), "1.0000000000000002");
+    names(message([] { (void)round_robin(-1e-20); }), "-1e-20");
 }
 
 #endif  // CERTIPOSE_PAVER_TEST_UNTYPED

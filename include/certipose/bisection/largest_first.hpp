@@ -19,14 +19,9 @@
 
 namespace certipose {
 
-class largest_first {
+class largest_first : public detail::bisector_base {
 public:
-    /// Same precision ε for every dimension; split at `ratio` (default: the midpoint).
-    explicit largest_first(double precision, double ratio = default_split_ratio)
-        : eps_(precision), ratio_(detail::checked_split_ratio(ratio)) {}
-    /// One precision per dimension.
-    explicit largest_first(std::vector<double> precision, double ratio = default_split_ratio)
-        : eps_(std::move(precision)), ratio_(detail::checked_split_ratio(ratio)) {}
+    using bisector_base::bisector_base;  // (precision or one per dimension, ratio = midpoint)
 
     /// The widest splittable component (lowest index on ties) and its split point, or nothing
     /// when no component is at least its precision wide.
@@ -38,20 +33,13 @@ public:
         for (std::size_t i = 0; i < box.size(); ++i) {
             const double w = detail::bisection_width(box[i]);
             if (!(w > best_width)) continue;
-            if (const auto p = detail::eligible_split_point(box[i], eps_(i), ratio_)) {
+            if (const auto p = split_point_of(box[i], i)) {
                 best = split{i, *p};
                 best_width = w;
             }
         }
         return best;
     }
-
-    const bisection_precision& precision() const noexcept { return eps_; }
-    double ratio() const noexcept { return ratio_; }
-
-private:
-    bisection_precision eps_;
-    double ratio_;
 };
 
 }  // namespace certipose

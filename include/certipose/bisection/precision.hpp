@@ -22,11 +22,11 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/operations.hpp"
@@ -37,13 +37,6 @@ namespace certipose {
 inline constexpr double default_split_ratio = 0.5;
 
 namespace detail {
-
-inline std::string format_double(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-}
 
 /// Throws unless 0 < ratio < 1 (a ratio of 0 or 1 would produce an empty half and loop).
 inline double checked_split_ratio(double ratio) {
@@ -110,6 +103,31 @@ std::optional<double> eligible_split_point(const I& c, double precision, double 
     if (!(lower(c) < p && p < upper(c))) return std::nullopt;
     return p;
 }
+
+/// What the built-in bisectors share: their precision and split ratio, validated once. A
+/// bisector derives from it and inherits the constructors (`using bisector_base::bisector_base;`).
+class bisector_base {
+public:
+    /// Same precision ε for every dimension; split at `ratio` (default: the midpoint).
+    explicit bisector_base(double precision, double ratio = default_split_ratio)
+        : eps_(precision), ratio_(checked_split_ratio(ratio)) {}
+    /// One precision per dimension.
+    explicit bisector_base(std::vector<double> precision, double ratio = default_split_ratio)
+        : eps_(std::move(precision)), ratio_(checked_split_ratio(ratio)) {}
+
+    const bisection_precision& precision() const noexcept { return eps_; }
+    double ratio() const noexcept { return ratio_; }
+
+protected:
+    /// Where component `c` (dimension `dim`) would be split, if it may be.
+    template <Interval I>
+    std::optional<double> split_point_of(const I& c, std::size_t dim) const {
+        return eligible_split_point(c, eps_(dim), ratio_);
+    }
+
+    bisection_precision eps_;
+    double ratio_;
+};
 
 }  // namespace detail
 

@@ -24,14 +24,9 @@
 
 namespace certipose {
 
-class round_robin {
+class round_robin : public detail::bisector_base {
 public:
-    /// Same precision ε for every dimension; split at `ratio` (default: the midpoint).
-    explicit round_robin(double precision, double ratio = default_split_ratio)
-        : eps_(precision), ratio_(detail::checked_split_ratio(ratio)) {}
-    /// One precision per dimension.
-    explicit round_robin(std::vector<double> precision, double ratio = default_split_ratio)
-        : eps_(std::move(precision)), ratio_(detail::checked_split_ratio(ratio)) {}
+    using bisector_base::bisector_base;  // (precision or one per dimension, ratio = midpoint)
 
     /// The first splittable dimension after the parent's (dimension 0 first at the root).
     template <class Box>
@@ -47,9 +42,6 @@ public:
         return s;
     }
 
-    const bisection_precision& precision() const noexcept { return eps_; }
-    double ratio() const noexcept { return ratio_; }
-
 private:
     template <class Box>
     std::optional<split> next_after(const Box& box, std::optional<std::size_t> previous) const {
@@ -59,13 +51,11 @@ private:
         const std::size_t start = previous ? (*previous + 1) % n : 0;
         for (std::size_t k = 0; k < n; ++k) {
             const std::size_t i = (start + k) % n;
-            if (const auto p = detail::eligible_split_point(box[i], eps_(i), ratio_)) return split{i, *p};
+            if (const auto p = split_point_of(box[i], i)) return split{i, *p};
         }
         return std::nullopt;
     }
 
-    bisection_precision eps_;
-    double ratio_;
     std::optional<std::size_t> last_;
 };
 

@@ -10,6 +10,7 @@
 // pixel) for any model. The built-in models are `thin_lens_camera` and `pinhole_camera`.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/error.hpp>
 
 #include <Eigen/Dense>
@@ -55,19 +56,11 @@ concept CameraModel = requires(const C& c) {
 
 namespace detail::camera {
 
-/// Shortest round-trip text for a double ("0.012", "-inf", "nan"), for error messages.
-inline std::string format_value(double v) {
-    char buf[64];
-    auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    if (ec != std::errc{}) return "?";
-    return std::string(buf, end);
-}
-
 [[noreturn]] inline void fail(std::string_view who, std::string_view field, std::string_view rule,
                               double value) {
     throw invalid_argument(std::string(field), std::string(who) + ": " + std::string(field) +
                                                    " must be " + std::string(rule) + ", got " +
-                                                   format_value(value));
+                                                   certipose::detail::format_double(value));
 }
 
 /// Finite and > 0. `!(v > 0)` also rejects NaN.
@@ -88,11 +81,21 @@ inline double require_finite(std::string_view who, std::string_view field, doubl
 inline double up(double v) { return std::nextafter(v, std::numeric_limits<double>::infinity()); }
 inline double down(double v) { return std::nextafter(v, -std::numeric_limits<double>::infinity()); }
 
-
-/// The sensor half shared by every built-in model: validated intrinsics, K and the FOV
-/// half-angles. `who` prefixes error messages ("thin_lens_camera: focal_length must be ...").
+/// The sensor half shared by every built-in model, as its public base (CRTP): validated
+/// intrinsics, K, the FOV half-angles, their accessors, and `distance_range(r)` — the model's
+/// own `distance_range()` capped for a resolution requirement. A model declares
+/// `using sensor<Model>::distance_range;` next to its `distance_range()`, which would hide it.
+/// `who` prefixes error messages ("thin_lens_camera: focal_length must be ...").
+template <class Model>
 class sensor {
 public:
+    /// From a parameter aggregate with the sensor fields (focal_length, pixel_pitch, width_px,
+    /// height_px, principal_point_px, skew, aspect), e.g. thin_lens_parameters.
+    template <class Parameters>
+    sensor(std::string_view who, const Parameters& p)
+        : sensor(who, p.focal_length, p.pixel_pitch, p.width_px, p.height_px, p.principal_point_px, p.skew,
+                 p.aspect) {}
+
     sensor(std::string_view who, double focal_length, double pixel_pitch, double width_px,
            double height_px, const std::optional<Eigen::Vector2d>& principal_point_px,
            double skew, double aspect)
@@ -144,6 +147,13 @@ public:
     double aspect() const noexcept { return aspect_; }
     const Eigen::Matrix3d& intrinsics() const noexcept { return k_; }
     certipose::fov_half_angles fov_half_angles() const noexcept { return fov_; }
+
+    /// The model's distance_range() capped at r · f_px for a resolution requirement of r metres
+    /// per pixel (capped_distance_range, found by ADL: it is declared below).
+    /// Throws invalid_argument("max_metres_per_pixel") for r <= 0 or NaN.
+    certipose::distance_range distance_range(double max_metres_per_pixel) const {
+        return capped_distance_range(static_cast<const Model&>(*this), max_metres_per_pixel);
+    }
 
 private:
     double focal_length_, pixel_pitch_, width_px_, height_px_, skew_, aspect_;

@@ -8,6 +8,7 @@
 // Every impossible parameter throws certipose::invalid_argument naming the field.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/camera/camera_model.hpp>
 #include <certipose/error.hpp>
 
@@ -34,48 +35,29 @@ struct pinhole_parameters {
     double d_max = std::numeric_limits<double>::infinity();  ///< farthest, metres (> d_min)
 };
 
-class pinhole_camera {
+class pinhole_camera : public detail::camera::sensor<pinhole_camera> {
+    using sensor = detail::camera::sensor<pinhole_camera>;
+
 public:
     explicit pinhole_camera(const pinhole_parameters& p)
-        : sensor_("pinhole_camera", p.focal_length, p.pixel_pitch, p.width_px, p.height_px,
-                  p.principal_point_px, p.skew, p.aspect),
+        : sensor("pinhole_camera", p),
           range_{p.d_min, p.d_max} {
         if (!(p.d_min >= 0.0) || !std::isfinite(p.d_min))
             detail::camera::fail("pinhole_camera", "d_min", "finite and >= 0", p.d_min);
         if (!(p.d_max > p.d_min))  // also rejects NaN; +inf is allowed
             detail::camera::fail("pinhole_camera", "d_max",
-                                 "greater than d_min (" + detail::camera::format_value(p.d_min) +
-                                     ")",
+                                 "greater than d_min (" + detail::format_double(p.d_min) + ")",
                                  p.d_max);
     }
 
-    // ---- CameraModel ---------------------------------------------------------------------
-    const Eigen::Matrix3d& intrinsics() const noexcept { return sensor_.intrinsics(); }
-    double width_px() const noexcept { return sensor_.width_px(); }
-    double height_px() const noexcept { return sensor_.height_px(); }
-    certipose::fov_half_angles fov_half_angles() const noexcept {
-        return sensor_.fov_half_angles();
-    }
+    // intrinsics(), width_px(), height_px(), fov_half_angles(), focal_length() and the other
+    // sensor accessors are inherited from detail::camera::sensor.
+
     /// [d_min, d_max] exactly as given.
     certipose::distance_range distance_range() const noexcept { return range_; }
-    /// The same capped at r · f_px for a resolution requirement of r metres per pixel
-    /// (capped_distance_range). Throws invalid_argument("max_metres_per_pixel") for r <= 0/NaN.
-    certipose::distance_range distance_range(double max_metres_per_pixel) const {
-        return capped_distance_range(*this, max_metres_per_pixel);
-    }
-
-    // ---- parameters ----------------------------------------------------------------------
-    double focal_length() const noexcept { return sensor_.focal_length(); }
-    double pixel_pitch() const noexcept { return sensor_.pixel_pitch(); }
-    double focal_length_px() const noexcept { return sensor_.focal_length_px(); }
-    const Eigen::Vector2d& principal_point_px() const noexcept {
-        return sensor_.principal_point_px();
-    }
-    double skew() const noexcept { return sensor_.skew(); }
-    double aspect() const noexcept { return sensor_.aspect(); }
+    using sensor::distance_range;  // (r): capped for a resolution requirement
 
 private:
-    detail::camera::sensor sensor_;
     certipose::distance_range range_;
 };
 

@@ -11,6 +11,7 @@
 // certipose::invalid_argument naming the field.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/camera/camera_model.hpp>
 #include <certipose/error.hpp>
 
@@ -40,55 +41,40 @@ struct thin_lens_parameters {
     double aspect = 1.0;           ///< δ = pixel height / pixel width
 };
 
-class thin_lens_camera {
+class thin_lens_camera : public detail::camera::sensor<thin_lens_camera> {
+    using sensor = detail::camera::sensor<thin_lens_camera>;
+
 public:
     explicit thin_lens_camera(const thin_lens_parameters& p)
-        : sensor_("thin_lens_camera", p.focal_length, p.pixel_pitch, p.width_px, p.height_px,
-                  p.principal_point_px, p.skew, p.aspect),
+        : sensor("thin_lens_camera", p),
           f_stop_(detail::camera::require_positive_finite("thin_lens_camera", "f_stop", p.f_stop)),
           focus_distance_(p.focus_distance),
           max_blur_circle_(detail::camera::require_positive_finite(
               "thin_lens_camera", "max_blur_circle", p.max_blur_circle)) {
-        const double f = sensor_.focal_length();
+        const double f = focal_length();
         // Only objects beyond f form a real image (Eq. 2); focus at infinity is not supported
         // (its near limit would be H - f), so the focus distance must be finite too.
         if (!(focus_distance_ > f) || !std::isfinite(focus_distance_))
             detail::camera::fail("thin_lens_camera", "focus_distance",
                                  "finite and greater than focal_length (" +
-                                     detail::camera::format_value(f) + ")",
+                                     detail::format_double(f) + ")",
                                  focus_distance_);
         aperture_diameter_ = f / f_stop_;  // Eq. 3
         hyperfocal_ = f * f / (f_stop_ * max_blur_circle_) + f;
         range_ = in_focus_range();
     }
 
-    // ---- CameraModel ---------------------------------------------------------------------
-    const Eigen::Matrix3d& intrinsics() const noexcept { return sensor_.intrinsics(); }
-    double width_px() const noexcept { return sensor_.width_px(); }
-    double height_px() const noexcept { return sensor_.height_px(); }
-    certipose::fov_half_angles fov_half_angles() const noexcept {
-        return sensor_.fov_half_angles();
-    }
+    // intrinsics(), width_px(), height_px(), fov_half_angles(), focal_length() and the other
+    // sensor accessors are inherited from detail::camera::sensor.
+
     /// In-focus object distances [D_n, D_f], rounded inward (see in_focus_range).
     certipose::distance_range distance_range() const noexcept { return range_; }
-    /// The same capped at r · f_px for a resolution requirement of r metres per pixel
-    /// (capped_distance_range). Throws invalid_argument("max_metres_per_pixel") for r <= 0/NaN.
-    certipose::distance_range distance_range(double max_metres_per_pixel) const {
-        return capped_distance_range(*this, max_metres_per_pixel);
-    }
+    using sensor::distance_range;  // (r): capped for a resolution requirement
 
-    // ---- parameters ----------------------------------------------------------------------
-    double focal_length() const noexcept { return sensor_.focal_length(); }
+    // ---- thin-lens parameters ------------------------------------------------------------
     double f_stop() const noexcept { return f_stop_; }
     double focus_distance() const noexcept { return focus_distance_; }
     double max_blur_circle() const noexcept { return max_blur_circle_; }
-    double pixel_pitch() const noexcept { return sensor_.pixel_pitch(); }
-    double focal_length_px() const noexcept { return sensor_.focal_length_px(); }
-    const Eigen::Vector2d& principal_point_px() const noexcept {
-        return sensor_.principal_point_px();
-    }
-    double skew() const noexcept { return sensor_.skew(); }
-    double aspect() const noexcept { return sensor_.aspect(); }
 
     // ---- thin-lens quantities (round-to-nearest point values, not certified) ---------------
     /// a_diam = f / f_stop (paper Eq. 3).
@@ -178,7 +164,6 @@ private:
         return {near, far};
     }
 
-    detail::camera::sensor sensor_;
     double f_stop_, focus_distance_, max_blur_circle_;
     double aperture_diameter_ = 0.0, hyperfocal_ = 0.0;
     certipose::distance_range range_{};

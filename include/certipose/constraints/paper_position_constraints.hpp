@@ -21,6 +21,7 @@
 
 #include <Eigen/Dense>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/constraints/box_triangle_distance.hpp"
 #include "certipose/constraints/concept.hpp"
 #include "certipose/contractor/hc4.hpp"
@@ -144,7 +145,7 @@ private:
         const distance_range r = problem.range;
         if (!(r.min >= 0.0) || !(r.max > r.min) || !std::isfinite(r.max))
             throw invalid_argument("distance_range", "paper_position_constraints: need 0 <= d_min < d_max < inf, got [" +
-                                                         std::to_string(r.min) + ", " + std::to_string(r.max) + "]");
+                                                         detail::format_double(r.min) + ", " + detail::format_double(r.max) + "]");
         return problem;
     }
 

@@ -22,6 +22,33 @@
 
 namespace certipose {
 
+namespace detail {
+
+/// One forward evaluation per constraint, stopping at the first violated one: `violated` if
+/// some constraint fails on the whole box, `satisfied` if all hold on all of it, else
+/// `undecided`. The box must be non-empty and the rounding mode held upward.
+template <class... Cs, Interval I, std::size_t N>
+verdict forward_verdict(const std::tuple<Cs...>& cs, const interval_box<I, N>& box) {
+    bool all = true;
+    bool violated = false;
+    std::apply(
+        [&](const auto&... c) {
+            (void)((
+                       [&] {
+                           const verdict v = c.test(box);
+                           if (v == verdict::violated) violated = true;
+                           if (v != verdict::satisfied) all = false;
+                           return violated;
+                       }() ||
+                       ...));
+        },
+        cs);
+    if (violated) return verdict::violated;
+    return all ? verdict::satisfied : verdict::undecided;
+}
+
+}  // namespace detail
+
 template <Constraint... Cs>
 class eval_test {
     static_assert(sizeof...(Cs) >= 1, "certipose::eval_test needs at least one constraint");
@@ -37,22 +64,7 @@ public:
         static_assert(var_bound <= N, "certipose::eval_test: a constraint uses a variable beyond the box");
         const expr::detail::upward_scope<I> rounding;
         if (is_empty(box)) return verdict::violated;
-        bool all = true;
-        bool violated = false;
-        std::apply(
-            [&](const auto&... c) {
-                (void)((
-                           [&] {
-                               const verdict v = c.test(box);
-                               if (v == verdict::violated) violated = true;
-                               if (v != verdict::satisfied) all = false;
-                               return violated;
-                           }() ||
-                           ...));
-            },
-            cs_);
-        if (violated) return verdict::violated;
-        return all ? verdict::satisfied : verdict::undecided;
+        return detail::forward_verdict(cs_, box);
     }
 
     const std::tuple<Cs...>& constraints() const noexcept { return cs_; }

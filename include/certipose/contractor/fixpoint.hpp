@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
@@ -27,7 +28,7 @@ public:
 
     explicit fixpoint(C c, double ratio = default_ratio) : c_(std::move(c)), ratio_(ratio) {
         if (!(ratio >= 0.0 && ratio < 1.0))
-            throw invalid_argument("ratio", "fixpoint ratio must be in [0, 1), got " + std::to_string(ratio));
+            throw invalid_argument("ratio", "fixpoint ratio must be in [0, 1), got " + detail::format_double(ratio));
     }
 
     template <Interval I, std::size_t N>

@@ -39,6 +39,7 @@
 #include <tuple>
 #include <utility>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
@@ -69,7 +70,7 @@ public:
     /// width. 0 propagates every change (bounded by `max_revisions()`); must be in [0, 1).
     void set_ratio(double r) {
         if (!(r >= 0.0 && r < 1.0))
-            throw invalid_argument("ratio", "hc4 ratio must be in [0, 1), got " + std::to_string(r));
+            throw invalid_argument("ratio", "hc4 ratio must be in [0, 1), got " + detail::format_double(r));
         ratio_ = r;
     }
     double ratio() const noexcept { return ratio_; }

@@ -21,6 +21,7 @@
 
 #include "certipose/contractor/concept.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
+#include "certipose/contractor/eval_test.hpp"
 #include "certipose/expr/constraint.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/interval/concept.hpp"
@@ -100,22 +101,7 @@ public:
     verdict test(const interval_box<I, N>& box) const {
         const expr::detail::upward_scope<I> rounding;
         if (is_empty(box)) return verdict::violated;
-        bool all = true;
-        bool violated = false;
-        std::apply(
-            [&](const auto&... c) {
-                (void)((
-                           [&] {
-                               const verdict v = c.test(box);
-                               if (v == verdict::violated) violated = true;
-                               if (v != verdict::satisfied) all = false;
-                               return violated;
-                           }() ||
-                           ...));
-            },
-            neg_.constraints());
-        if (violated) return verdict::violated;
-        if (all) return verdict::satisfied;
+        if (const verdict v = detail::forward_verdict(neg_.constraints(), box); v != verdict::undecided) return v;
         auto b = box;
         neg_.contract(b);
         return is_empty(b) ? verdict::satisfied : verdict::undecided;

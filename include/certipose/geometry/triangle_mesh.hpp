@@ -13,6 +13,7 @@
 // Boost.Multiprecision integers.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/error.hpp>
 
 #include <Eigen/Geometry>
@@ -54,12 +55,8 @@ struct triangle_soup {
 
 namespace detail::mesh {
 
-/// Shortest round-trip text of a double ("0.05", "nan", "-inf") for error messages.
-inline std::string format(double v) {
-    char buf[64];
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
+/// Text of a double (certipose::detail::format_double) or a point, for error messages.
+inline std::string format(double v) { return certipose::detail::format_double(v); }
 
 inline std::string format(const Eigen::Vector3d& p) {
     return "(" + format(p.x()) + ", " + format(p.y()) + ", " + format(p.z()) + ")";

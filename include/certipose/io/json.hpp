@@ -18,6 +18,7 @@
 // mode upward came back as a different double (measured: 1/3 and 0.123456789 did not survive).
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/camera.hpp>
 #include <certipose/error.hpp>
 #include <certipose/interval/detail/fenv.hpp>
@@ -275,7 +276,7 @@ auto checked_by_model(const std::string& path, F&& f) {
 inline ordered_json finite(double v, const std::string& path) {
     if (!std::isfinite(v))
         throw invalid_argument(path, path + ": cannot be written to JSON, it is not finite (" +
-                                         detail::camera::format_value(v) + ")");
+                                         detail::format_double(v) + ")");
     return v;
 }
 
@@ -312,17 +313,17 @@ inline ordered_json bounds(const bounds_3d& b, const std::string& path) {
         if (b[i][0] > b[i][1])
             throw invalid_argument(element(path, i),
                                    element(path, i) + ": lower bound above upper bound (" +
-                                       detail::camera::format_value(b[i][0]) + " > " +
-                                       detail::camera::format_value(b[i][1]) + ")");
+                                       detail::format_double(b[i][0]) + " > " +
+                                       detail::format_double(b[i][1]) + ")");
     return j;
 }
 
 inline void check_bounds(const bounds_3d& b, const std::string& path) {
     for (std::size_t i = 0; i < 3; ++i)
         if (!(b[i][0] <= b[i][1]))
-            fail(element(path, i), "lower bound " + detail::camera::format_value(b[i][0]) +
+            fail(element(path, i), "lower bound " + detail::format_double(b[i][0]) +
                                        " is above upper bound " +
-                                       detail::camera::format_value(b[i][1]));
+                                       detail::format_double(b[i][1]));
 }
 
 inline std::optional<termination> termination_from_string(std::string_view s) {
@@ -352,6 +353,16 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
         const auto a = as_numbers<2>(*v, child(path, "principal_point_px"));
         return Eigen::Vector2d(a[0], a[1]);
     };
+    // The sensor fields every built-in model has (detail::camera::sensor).
+    const auto read_sensor = [&](auto& p) {
+        p.focal_length = required_number(j, path, "focal_length");
+        p.pixel_pitch = required_number(j, path, "pixel_pitch");
+        p.width_px = required_number(j, path, "width_px");
+        p.height_px = required_number(j, path, "height_px");
+        p.principal_point_px = principal_point();
+        p.skew = optional_number(j, path, "skew").value_or(0.0);
+        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+    };
     if (model == "thin_lens") {
         reject_unknown(j, path,
                        {"model", "focal_length", "f_stop", "focus_distance", "max_blur_circle",
@@ -359,16 +370,10 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
                         "aspect"},
                        "thin_lens camera");
         thin_lens_parameters p;
-        p.focal_length = required_number(j, path, "focal_length");
+        read_sensor(p);
         p.f_stop = required_number(j, path, "f_stop");
         p.focus_distance = required_number(j, path, "focus_distance");
         p.max_blur_circle = required_number(j, path, "max_blur_circle");
-        p.pixel_pitch = required_number(j, path, "pixel_pitch");
-        p.width_px = required_number(j, path, "width_px");
-        p.height_px = required_number(j, path, "height_px");
-        p.principal_point_px = principal_point();
-        p.skew = optional_number(j, path, "skew").value_or(0.0);
-        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
         return checked_by_model(path, [&] { return any_camera(thin_lens_camera(p)); });
     }
     if (model == "pinhole") {
@@ -377,13 +382,7 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
                         "principal_point_px", "skew", "aspect", "d_min", "d_max"},
                        "pinhole camera");
         pinhole_parameters p;
-        p.focal_length = required_number(j, path, "focal_length");
-        p.pixel_pitch = required_number(j, path, "pixel_pitch");
-        p.width_px = required_number(j, path, "width_px");
-        p.height_px = required_number(j, path, "height_px");
-        p.principal_point_px = principal_point();
-        p.skew = optional_number(j, path, "skew").value_or(0.0);
-        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+        read_sensor(p);
         // A pinhole has no depth of field, so the working distances must be stated; d_max may
         // be null for "unbounded" (JSON has no infinity).
         p.d_min = required_number(j, path, "d_min");

@@ -15,6 +15,7 @@
 // mode the caller holds). Files are written atomically.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/error.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
 #include <certipose/interval/concept.hpp>
@@ -74,17 +75,12 @@ struct builder {
     std::string vertices, faces;
     std::size_t num_vertices = 0, num_faces = 0;
 
-    void number(std::string& out, double v) {
-        char buf[32];
-        const auto r = std::to_chars(buf, buf + sizeof buf, v);
-        out.append(buf, r.ptr);
-    }
     static void colour(std::string& out, rgb c) {
         out += ' ' + std::to_string(c.r) + ' ' + std::to_string(c.g) + ' ' + std::to_string(c.b) + '\n';
     }
     std::size_t vertex(const Eigen::Vector3d& p, rgb c) {
         for (int k = 0; k < 3; ++k) {
-            number(vertices, p[k]);
+            certipose::detail::append_double(vertices, p[k]);
             if (k < 2) vertices += ' ';
         }
         colour(vertices, c);

@@ -8,6 +8,7 @@
 // certipose/io/read_mesh.hpp (CGAL). Failure throws certipose::io_error naming the path.
 #pragma once
 
+#include <certipose/detail/format.hpp>
 #include <certipose/error.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
 #include <certipose/io/write_file.hpp>
@@ -24,11 +25,9 @@ namespace certipose {
 inline void write_mesh_off(const std::filesystem::path& path, const triangle_mesh& m) {
     std::string text =
         "OFF\n" + std::to_string(m.num_vertices()) + " " + std::to_string(m.num_faces()) + " 0\n";
-    char buf[32];
     for (const auto& p : m.vertices()) {
         for (int k = 0; k < 3; ++k) {
-            const auto r = std::to_chars(buf, buf + sizeof buf, p[k]);
-            text.append(buf, r.ptr);
+            detail::append_double(text, p[k]);
             text += k < 2 ? ' ' : '\n';
         }
     }

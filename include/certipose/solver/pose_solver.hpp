@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/bisection/largest_first.hpp"
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/camera/thin_lens_camera.hpp"
@@ -83,7 +84,7 @@ public:
         if (range_.empty())
             throw invalid_argument("max_metres_per_pixel",
                                    "pose_solver: the resolution requirement leaves no usable distance (d_max " +
-                                       std::to_string(range_.max) + " < d_min " + std::to_string(range_.min) + ")");
+                                       detail::format_double(range_.max) + " < d_min " + detail::format_double(range_.min) + ")");
         if (!std::isfinite(range_.max))
             throw invalid_argument("d_max", "pose_solver: the camera's usable distance is unbounded; set "
                                             "max_metres_per_pixel or use a camera with a finite d_max");

@@ -14,6 +14,7 @@
 #include <stop_token>
 #include <string>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/paver/paver.hpp"  // termination, box_class
 
@@ -30,11 +31,11 @@ struct inspection_task {
     void validate() const {
         if (!(min_view_angle >= 0.0) || !(min_view_angle < std::numbers::pi / 2))
             throw invalid_argument("min_view_angle", "inspection_task: min_view_angle must be in [0, pi/2), got " +
-                                                         std::to_string(min_view_angle));
+                                                         detail::format_double(min_view_angle));
         if (max_metres_per_pixel && !(*max_metres_per_pixel > 0.0 && std::isfinite(*max_metres_per_pixel)))
             throw invalid_argument("max_metres_per_pixel",
                                    "inspection_task: max_metres_per_pixel must be positive and finite, got " +
-                                       std::to_string(*max_metres_per_pixel));
+                                       detail::format_double(*max_metres_per_pixel));
     }
 };
 
@@ -62,11 +63,11 @@ struct solve_options {
     void validate() const {
         if (!(position_eps > 0.0) || !std::isfinite(position_eps))
             throw invalid_argument("position_eps", "solve_options: position_eps must be positive and finite, got " +
-                                                       std::to_string(position_eps));
+                                                       detail::format_double(position_eps));
         if (!(orientation_eps > 0.0) || !std::isfinite(orientation_eps))
             throw invalid_argument("orientation_eps",
                                    "solve_options: orientation_eps must be positive and finite, got " +
-                                       std::to_string(orientation_eps));
+                                       detail::format_double(orientation_eps));
         if (max_boxes == 0) throw invalid_argument("max_boxes", "solve_options: max_boxes must be at least 1");
     }
 };
