@@ -41,6 +41,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Intersections_3/Bbox_3_Segment_3.h>
 #include <CGAL/Intersections_3/Iso_cuboid_3_Triangle_3.h>
 
 #include <Eigen/Geometry>
@@ -461,6 +462,60 @@ inline bool planar_wall_blocks(const sight_hull& H, const aabb_scene& scene, std
     return true;
 }
 
+/// May the segment [a, b] share a point with the closed triangle w? Exact when it says no;
+/// a segment lying in w's plane is answered yes without looking further.
+inline bool segment_may_meet_triangle(const pt& a, const pt& b, const std::array<pt, 3>& w) {
+    const int sa = orient3(w[0], w[1], w[2], a), sb = orient3(w[0], w[1], w[2], b);
+    if (sa == sb) return sa == 0;  // both strictly on one side: no; both in the plane: maybe
+    return line_meets_closed_triangle(a, b, w);  // the segment meets the plane in one point
+}
+
+/// Does the segment (a, b) possibly meet a scene triangle other than `facet`? (CGAL traversal
+/// traits over the scene tree.)
+struct segment_hits_other {
+    const aabb_scene& scene;
+    std::size_t facet;
+    const epick::Segment_3& seg;
+    pt a, b;
+    bool hit = false;
+
+    bool go_further() const { return !hit; }
+
+    template <class Primitive>
+    void intersection(const epick::Segment_3&, const Primitive& prim) {
+        const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
+        if (idx != facet && segment_may_meet_triangle(a, b, scene.tris[idx].v)) hit = true;
+    }
+
+    template <class Node>
+    bool do_intersect(const epick::Segment_3&, const Node& node) const {
+        return CGAL::do_intersect(seg, node.bbox());
+    }
+};
+
+/// Is a sight line from the box to the facet free? Tries the box centre and its corners
+/// against f's centroid rounded to doubles. Only a filter: `true` lets `classify` answer
+/// PARTIAL (we already know some sight line is blocked) without searching for an OCCLUDED
+/// certificate, which needs every sight line blocked and so cannot exist when one is free.
+/// Near misses of the rounded centroid can only make it return false, which costs time, not
+/// soundness: PARTIAL is never a wrong answer.
+inline bool some_sight_line_free(const aabb_scene& scene, std::size_t facet, const pt& lo, const pt& hi) {
+    using P = epick::Point_3;
+    const auto& f = scene.tris[facet].v;
+    const P q((f[0][0] + f[1][0] + f[2][0]) / 3, (f[0][1] + f[1][1] + f[2][1]) / 3, (f[0][2] + f[1][2] + f[2][2]) / 3);
+    const auto free_from = [&](const P& c) {
+        const epick::Segment_3 seg(c, q);
+        segment_hits_other t{scene, facet, seg, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}};
+        scene.tree.traversal(seg, t);
+        return !t.hit;
+    };
+    if (free_from(P(lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2)))
+        return true;
+    for (int k = 0; k < 8; ++k)
+        if (free_from(P(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]))) return true;
+    return false;
+}
+
 /// CGAL traversal traits: prune nodes H cannot reach, stop at the first blocking triangle.
 struct hull_traversal {
     const sight_hull& H;
@@ -585,11 +640,8 @@ public:
         if (front == 0) {
             // Behind or in the facet plane. An in-plane position outside the facet sees its
             // interior only across its boundary, i.e. across a neighbour triangle (closed part).
-            using P = epick::Point_3;
-            const epick::Triangle_3 tri(P(F.v[0][0], F.v[0][1], F.v[0][2]), P(F.v[1][0], F.v[1][1], F.v[1][2]),
-                                        P(F.v[2][0], F.v[2][1], F.v[2][2]));
             const epick::Iso_cuboid_3 cub(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-            return CGAL::do_intersect(tri, cub) ? visibility::partial : visibility::occluded;
+            return CGAL::do_intersect(scene_->cgal_tris[facet], cub) ? visibility::partial : visibility::occluded;
         }
         if (front < 8) return visibility::partial;  // edge-on or behind for some positions
 
@@ -601,8 +653,12 @@ public:
         if (info.exact_clips) scene_->exact_clips.fetch_add(info.exact_clips, std::memory_order_relaxed);
         if (!tr.blocked) return visibility::visible;
         const scene_triangle& first = scene_->tris[info.blocker];
-        if (blocks_every_sight_line(H, first) || planar_wall_blocks(H, *scene_, facet, first))
-            return visibility::occluded;
+        if (blocks_every_sight_line(H, first)) return visibility::occluded;
+        // The wall certificates below walk the tree again; most boxes with a blocker still
+        // have a free sight line, which rules every certificate out at the cost of a few
+        // segment queries.
+        if (some_sight_line_free(*scene_, facet, lo, hi)) return visibility::partial;
+        if (planar_wall_blocks(H, *scene_, facet, first)) return visibility::occluded;
         // Try the planes of the other blocking triangles (each distinct plane once).
         std::vector<std::size_t> blockers;
         hull_traversal all{H, *scene_, facet, F.id, info};
