@@ -354,8 +354,9 @@ inline bool segment_meets_hull_front(const sight_hull& H, const pt& p0, const pt
 }
 
 /// Collects the scene triangles lying exactly in plane P near H (nodes strictly on one side of
-/// P or strictly outside H are pruned; what they hold can neither contain a sight-line crossing
-/// nor have an edge meeting H).
+/// P or outside H's bounding box are pruned; what they hold can neither contain a sight-line
+/// crossing nor have an edge meeting H). Nodes are not tested against H's planes: for walls
+/// that test cost more than the few far triangles it saves, whose edges are then just checked.
 struct coplanar_collector {
     const sight_hull& H;
     const aabb_scene& scene;
@@ -381,8 +382,8 @@ struct coplanar_collector {
     bool do_intersect(const sight_hull&, const Node& node) const {
         const auto& b = node.bbox();
         const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
-        if (box_strictly_outside(P, lo, hi) || box_strictly_outside(P_flipped, lo, hi)) return false;
-        return !node_outside_hull(H, lo, hi, 0);
+        if (node_outside_hull(H, lo, hi, H.num_planes)) return false;  // H's bounding box only
+        return !box_strictly_outside(P, lo, hi) && !box_strictly_outside(P_flipped, lo, hi);
     }
 };
 
@@ -493,7 +494,7 @@ struct segment_hits_other {
     }
 };
 
-/// Is a sight line from the box to the facet free? Tries the box centre and its corners
+/// Is a sight line from the box to the facet free? Tries the box centre and two opposite corners
 /// against f's centroid rounded to doubles. Only a filter: `true` lets `classify` answer
 /// PARTIAL (we already know some sight line is blocked) without searching for an OCCLUDED
 /// certificate, which needs every sight line blocked and so cannot exist when one is free.
@@ -511,7 +512,7 @@ inline bool some_sight_line_free(const aabb_scene& scene, std::size_t facet, con
     };
     if (free_from(P(lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2)))
         return true;
-    for (int k = 0; k < 8; ++k)
+    for (int k : {0, 7})
         if (free_from(P(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]))) return true;
     return false;
 }
