@@ -27,7 +27,6 @@
 #include <Eigen/Geometry>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -13,7 +13,6 @@
 #include <certipose/geometry/triangle_mesh.hpp>
 #include <certipose/io/write_file.hpp>
 
-#include <charconv>
 #include <filesystem>
 #include <string>
 

@@ -498,8 +498,8 @@ struct segment_hits_other {
 /// against f's centroid rounded to doubles. Only a filter: `true` lets `classify` answer
 /// PARTIAL (we already know some sight line is blocked) without searching for an OCCLUDED
 /// certificate, which needs every sight line blocked and so cannot exist when one is free.
-/// Near misses of the rounded centroid can only make it return false, which costs time, not
-/// soundness: PARTIAL is never a wrong answer.
+/// Rounding the centroid may sway a grazing segment either way; neither way costs soundness:
+/// `true` only yields PARTIAL, which is never a wrong answer, and `false` only costs the search.
 inline bool some_sight_line_free(const aabb_scene& scene, std::size_t facet, const pt& lo, const pt& hi) {
     using P = epick::Point_3;
     const auto& f = scene.tris[facet].v;
