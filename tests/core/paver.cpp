@@ -5,6 +5,7 @@
 // stop runs with the right reason and return the unclassified rest; depth- and breadth-first
 // build the same paving; the bisection tree is consistent; two pavers run on two threads.
 #include <certipose/bisection/largest_first.hpp>
+#include <certipose/contractor/acid.hpp>
 #include <certipose/bisection/round_robin.hpp>
 #include <certipose/contractor/eval_test.hpp>
 #include <certipose/contractor/hc4.hpp>
@@ -302,6 +303,11 @@ TEST_CASE("error messages name tiny and non-finite values exactly") {
     names(message([] { certipose::inspection_task{.min_view_angle = -1e-300}.validate(); }), "-1e-300");
     names(message([] { (void)largest_first(0.1, 1.0000000000000002); }), "1.0000000000000002");
     names(message([] { (void)round_robin(-1e-20); }), "-1e-20");
+    names(message([] { (void)certipose::param<0>(1e-9, -1e-9); }), "-1e-09");
+    constexpr certipose::var<0> x;
+    names(message([&] { (void)certipose::in(x, 3e-8, 1e-8); }), "3e-08");
+    names(message([] { (void)certipose::acid(certipose::hc4(shell_constraint()), {.var_min_width = -1e-12}); }),
+          "-1e-12");
 }
 
 #endif  // CERTIPOSE_PAVER_TEST_UNTYPED

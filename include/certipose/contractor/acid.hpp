@@ -27,6 +27,7 @@
 #include <string>
 #include <utility>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
@@ -56,9 +57,9 @@ public:
         if (opt_.s3b < 2) throw invalid_argument("s3b", "acid needs s3b >= 2, got " + std::to_string(opt_.s3b));
         if (opt_.scid < 0) throw invalid_argument("scid", "acid needs scid >= 0, got " + std::to_string(opt_.scid));
         if (!(opt_.var_min_width >= 0.0))
-            throw invalid_argument("var_min_width", "acid needs var_min_width >= 0, got " + std::to_string(opt_.var_min_width));
+            throw invalid_argument("var_min_width", "acid needs var_min_width >= 0, got " + certipose::detail::format_double(opt_.var_min_width));
         if (!(opt_.ct_ratio >= 0.0 && opt_.ct_ratio <= 1.0))
-            throw invalid_argument("ct_ratio", "acid needs ct_ratio in [0, 1], got " + std::to_string(opt_.ct_ratio));
+            throw invalid_argument("ct_ratio", "acid needs ct_ratio in [0, 1], got " + certipose::detail::format_double(opt_.ct_ratio));
         if (opt_.tuning_length < 1)
             throw invalid_argument("tuning_length", "acid needs tuning_length >= 1, got " + std::to_string(opt_.tuning_length));
         if (opt_.tuning_period < opt_.tuning_length)

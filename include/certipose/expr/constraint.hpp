@@ -17,6 +17,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/detail/flatten.hpp"
@@ -45,8 +46,8 @@ struct in_constraint : constraint_tag {
 
     in_constraint(E expr, double l, double h) : e(std::move(expr)), lo(l), hi(h) {
         if (std::isnan(l) || std::isnan(h) || !(l <= h))
-            throw invalid_argument("in", "constraint bounds need lo <= hi (no NaN), got [" + std::to_string(l) +
-                                             ", " + std::to_string(h) + "]");
+            throw invalid_argument("in", "constraint bounds need lo <= hi (no NaN), got [" + certipose::detail::format_double(l) +
+                                             ", " + certipose::detail::format_double(h) + "]");
     }
 
     template <class Box>

@@ -32,6 +32,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/detail/projection.hpp"
 #include "certipose/interval/concept.hpp"
@@ -180,7 +181,7 @@ struct param : node_tag {
     void set(double l, double h) {
         if (!(l <= h))
             throw invalid_argument("param", "interval parameter " + std::to_string(Id) + " needs lo <= hi, got [" +
-                                                std::to_string(l) + ", " + std::to_string(h) + "]");
+                                                certipose::detail::format_double(l) + ", " + certipose::detail::format_double(h) + "]");
         lo = l;
         hi = h;
     }

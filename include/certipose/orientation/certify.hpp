@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
@@ -67,17 +68,17 @@ public:
             for (int c = 0; c < 3; ++c)
                 if (!std::isfinite(K(r, c)))
                     throw invalid_argument("K", "fov_frustum: K(" + std::to_string(r) + "," + std::to_string(c) +
-                                                    ") must be finite, got " + std::to_string(K(r, c)));
+                                                    ") must be finite, got " + certipose::detail::format_double(K(r, c)));
         if (!(K(2, 0) == 0.0 && K(2, 1) == 0.0 && K(2, 2) == 1.0))
             throw invalid_argument("K", "fov_frustum: the third row of K must be (0, 0, 1), got (" +
-                                            std::to_string(K(2, 0)) + ", " + std::to_string(K(2, 1)) + ", " +
-                                            std::to_string(K(2, 2)) + ")");
+                                            certipose::detail::format_double(K(2, 0)) + ", " + certipose::detail::format_double(K(2, 1)) + ", " +
+                                            certipose::detail::format_double(K(2, 2)) + ")");
         if (!(width_px > 0.0) || !std::isfinite(width_px))
             throw invalid_argument("width_px", "fov_frustum: width_px must be positive and finite, got " +
-                                                   std::to_string(width_px));
+                                                   certipose::detail::format_double(width_px));
         if (!(height_px > 0.0) || !std::isfinite(height_px))
             throw invalid_argument("height_px", "fov_frustum: height_px must be positive and finite, got " +
-                                                    std::to_string(height_px));
+                                                    certipose::detail::format_double(height_px));
         const rounding_guard<I> guard{};
         const I w(width_px), h(height_px);
         const std::array<std::array<I, 3>, 4> ls{{
@@ -135,7 +136,7 @@ inline void check_facet(const facet& f) {
     for (const auto& v : f.v)
         for (int k = 0; k < 3; ++k)
             if (!std::isfinite(v[k]))
-                throw invalid_argument("facet", "certify_fov: facet vertex coordinate " + std::to_string(v[k]) +
+                throw invalid_argument("facet", "certify_fov: facet vertex coordinate " + certipose::detail::format_double(v[k]) +
                                                     " is not finite");
 }
 
@@ -143,6 +144,21 @@ template <Interval I, std::size_t N>
 bool finite_box(const interval_box<I, N>& b) {
     for (const I& c : b.x)
         if (!std::isfinite(lower(c)) || !std::isfinite(upper(c))) return false;
+    return true;
+}
+
+/// The argument checks every orientation policy's `orient` starts with (`who` prefixes the
+/// messages): ε_o positive and finite, then — unless the box is empty, when there is nothing to
+/// certify and this returns false — a finite box and a finite facet.
+template <Interval I>
+bool checked_orient_arguments(const std::string& who, const position_box<I>& position, const facet& f,
+                              double orientation_eps) {
+    if (!(orientation_eps > 0.0) || !std::isfinite(orientation_eps))
+        throw invalid_argument("orientation_eps", who + ": orientation_eps must be positive and finite, got " +
+                                                      certipose::detail::format_double(orientation_eps));
+    if (is_empty(position)) return false;
+    if (!finite_box(position)) throw invalid_argument("position_box", who + ": the position box must be finite");
+    check_facet(f);
     return true;
 }
 

@@ -343,14 +343,8 @@ public:
     template <Interval I, CameraModel C>
     orientation_result<I> orient(const position_box<I>& position, const facet& f, const C& camera,
                                  double orientation_eps) const {
-        if (!(orientation_eps > 0.0) || !std::isfinite(orientation_eps))
-            throw invalid_argument("orientation_eps", "paper_orientation: orientation_eps must be positive and finite, got " +
-                                                          std::to_string(orientation_eps));
         orientation_result<I> out;
-        if (is_empty(position)) return out;
-        if (!detail::orientation::finite_box(position))
-            throw invalid_argument("position_box", "paper_orientation: the position box must be finite");
-        detail::orientation::check_facet(f);
+        if (!detail::orientation::checked_orient_arguments("paper_orientation", position, f, orientation_eps)) return out;
         const rounding_guard<I> guard{};
         const fov_frustum<I> frustum(camera);
         const auto aim = nominal_aim(position, f);

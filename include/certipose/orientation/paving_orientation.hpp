@@ -54,14 +54,8 @@ public:
     template <Interval I, CameraModel C>
     orientation_result<I> orient(const position_box<I>& position, const facet& f, const C& camera,
                                  double orientation_eps) const {
-        if (!(orientation_eps > 0.0) || !std::isfinite(orientation_eps))
-            throw invalid_argument("orientation_eps", "paving_orientation: orientation_eps must be positive and finite, got " +
-                                                          std::to_string(orientation_eps));
         orientation_result<I> out;
-        if (is_empty(position)) return out;
-        if (!detail::orientation::finite_box(position))
-            throw invalid_argument("position_box", "paving_orientation: the position box must be finite");
-        detail::orientation::check_facet(f);
+        if (!detail::orientation::checked_orient_arguments("paving_orientation", position, f, orientation_eps)) return out;
         constexpr double pi = std::numbers::pi;
         const orientation_box<I> all = orientation_box<I>::from_bounds({{{-pi, pi}, {0.0, pi}, {-pi, pi}}});
         paver_options po;

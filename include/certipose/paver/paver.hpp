@@ -35,6 +35,7 @@
 #include <utility>
 #include <vector>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/bisection/concept.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
@@ -500,10 +501,10 @@ private:
         if (s.dimension >= b.size()) throw out_of_range("split dimension", s.dimension, b.size());
         const auto& c = b[s.dimension];
         if (!(lower(c) < s.point && s.point < upper(c)))
-            throw invalid_argument("split point", "paver: the bisector's split point " + std::to_string(s.point) +
+            throw invalid_argument("split point", "paver: the bisector's split point " + certipose::detail::format_double(s.point) +
                                                       " is not strictly inside dimension " +
-                                                      std::to_string(s.dimension) + " [" + std::to_string(lower(c)) +
-                                                      ", " + std::to_string(upper(c)) + "]");
+                                                      std::to_string(s.dimension) + " [" + certipose::detail::format_double(lower(c)) +
+                                                      ", " + certipose::detail::format_double(upper(c)) + "]");
     }
 
     C contractor_;

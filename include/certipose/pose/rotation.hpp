@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/eigen.hpp"
@@ -127,8 +128,8 @@ struct zxz_angles {
 inline zxz_angles zxz_angles_from_axis(const Eigen::Vector3d& direction) {
     if (!direction.allFinite() || direction.squaredNorm() == 0.0)
         throw invalid_argument("direction", "zxz_angles_from_axis: direction must be a finite non-zero vector, got (" +
-                                                std::to_string(direction.x()) + ", " + std::to_string(direction.y()) +
-                                                ", " + std::to_string(direction.z()) + ")");
+                                                certipose::detail::format_double(direction.x()) + ", " + certipose::detail::format_double(direction.y()) +
+                                                ", " + certipose::detail::format_double(direction.z()) + ")");
     const double x = direction.x(), y = direction.y(), z = direction.z();
     const double horizontal = std::hypot(x, y);
     zxz_angles a;
