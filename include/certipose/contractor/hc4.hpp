@@ -44,7 +44,6 @@
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/constraint.hpp"
-#include "certipose/expr/detail/flatten.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/operations.hpp"
@@ -92,7 +91,7 @@ public:
     /// HC4Revise of the k-th constraint alone (one forward–backward pass); false and an empty
     /// box when it proves infeasibility.
     template <std::size_t K, Interval I, std::size_t N>
-    CERTIPOSE_DETAIL_FLATTEN bool revise(interval_box<I, N>& box) const {
+    bool revise(interval_box<I, N>& box) const {
         const expr::detail::upward_scope<I> rounding;
         if (is_empty(box)) return false;
         if (!std::get<K>(cs_).revise(box)) {

@@ -20,7 +20,6 @@
 #include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
-#include "certipose/expr/detail/flatten.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/expr/expression.hpp"
 #include "certipose/interval/concept.hpp"
@@ -64,9 +63,9 @@ struct in_constraint : constraint_tag {
     }
 
     /// HC4Revise of `e ∈ target`: narrows `box`; false when it proves there is no solution.
-    // Flattened: one straight-line function per constraint (expr/detail/flatten.hpp).
+    // One straight-line function per constraint: the nodes are forced inline (detail/config.hpp).
     template <class Box>
-    CERTIPOSE_DETAIL_FLATTEN bool revise(Box& box, const typename Box::interval_type& target) const {
+    bool revise(Box& box, const typename Box::interval_type& target) const {
         const detail::upward_scope<typename Box::interval_type> rounding;
         values_t<Box> v;
         const auto value = forward(box, v);
@@ -85,7 +84,7 @@ struct in_constraint : constraint_tag {
 
     /// Enclosure of e over the box.
     template <class Box>
-    CERTIPOSE_DETAIL_FLATTEN typename Box::interval_type evaluate(const Box& box) const {
+    typename Box::interval_type evaluate(const Box& box) const {
         const detail::upward_scope<typename Box::interval_type> rounding;
         values_t<Box> v;
         return forward(box, v);
@@ -94,7 +93,7 @@ struct in_constraint : constraint_tag {
     /// satisfied: e is defined on the whole box and its range lies in [lo, hi];
     /// violated: no point of the box has e defined and inside [lo, hi]; else undecided.
     template <class Box>
-    CERTIPOSE_DETAIL_FLATTEN verdict test(const Box& box) const {
+    verdict test(const Box& box) const {
         const detail::upward_scope<typename Box::interval_type> rounding;
         using I = typename Box::interval_type;
         values_t<Box> v;

@@ -19,6 +19,9 @@
 // of sin/cos included); points outside the domain of sqrt, ÷ or negative powers are removed,
 // as in IBEX (a constraint implies its expression is defined).
 //
+// The node steps are CERTIPOSE_DETAIL_INLINE (detail/config.hpp): a constraint's revise or
+// evaluate compiles to one straight-line function over its whole tree.
+//
 // All of it requires the rounding mode held upward (`rounding_guard<I>`): entry points
 // (`evaluate`, contractors, tests) hold it, nodes never do.
 #pragma once
@@ -32,6 +35,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "certipose/detail/config.hpp"
 #include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/detail/projection.hpp"
@@ -68,7 +72,7 @@ I as_interval(const T& x) {
 
 /// v ∩= t; false when the result is empty.
 template <class I>
-bool narrow(I& v, const I& t) {
+CERTIPOSE_DETAIL_INLINE bool narrow(I& v, const I& t) {
     v = intersect(v, t);
     return !is_empty(v);
 }
@@ -96,17 +100,17 @@ struct var : node_tag {
     static constexpr bool is_constant = false;
 
     template <std::size_t O, class Box, class V>
-    void fwd(const Box&, V&) const noexcept {}
+    CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
     template <std::size_t O, class Box, class V>
-    const auto& value(const Box& box, const V&) const noexcept {
+    CERTIPOSE_DETAIL_INLINE const auto& value(const Box& box, const V&) const noexcept {
         return box[K];
     }
     template <std::size_t O, class Box, class V>
-    bool bwd(const detail::interval_of<V>& t, Box& box, V&) const {
+    CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box& box, V&) const {
         return detail::narrow(box[K], t);
     }
     template <std::size_t O, class Box, class V>
-    bool defined(const Box&, const V&) const noexcept {
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
         return true;
     }
     template <std::size_t O, class Box, class V>
@@ -135,17 +139,17 @@ struct constant : node_tag {
     }
 
     template <std::size_t O, class Box, class V>
-    void fwd(const Box&, V&) const noexcept {}
+    CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
     template <std::size_t O, class Box, class V>
     double value(const Box&, const V&) const noexcept {
         return c;
     }
     template <std::size_t O, class Box, class V>
-    bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
+    CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
         return contains(t, c);
     }
     template <std::size_t O, class Box, class V>
-    bool defined(const Box&, const V&) const noexcept {
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
         return true;
     }
     template <std::size_t O, class Box, class V>
@@ -191,17 +195,17 @@ struct param : node_tag {
     }
 
     template <std::size_t O, class Box, class V>
-    void fwd(const Box&, V&) const noexcept {}
+    CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
     template <std::size_t O, class Box, class V>
     detail::interval_of<V> value(const Box&, const V&) const {
         return detail::interval_of<V>(lo, hi);
     }
     template <std::size_t O, class Box, class V>
-    bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
+    CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
         return !is_empty(intersect(t, detail::interval_of<V>(lo, hi)));
     }
     template <std::size_t O, class Box, class V>
-    bool defined(const Box&, const V&) const noexcept {
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
         return true;
     }
     template <std::size_t O, class Box, class V>
@@ -233,17 +237,17 @@ struct unary : node_tag {
     unary(A arg, Op o = {}) : a(std::move(arg)), op(o) {}
 
     template <std::size_t O, class Box, class V>
-    void fwd(const Box& box, V& v) const {
+    CERTIPOSE_DETAIL_INLINE void fwd(const Box& box, V& v) const {
         using I = detail::interval_of<V>;
         a.template fwd<O + 1>(box, v);
         v[O] = op.fwd(detail::as_interval<I>(a.template value<O + 1>(box, v)));
     }
     template <std::size_t O, class Box, class V>
-    const auto& value(const Box&, const V& v) const noexcept {
+    CERTIPOSE_DETAIL_INLINE const auto& value(const Box&, const V& v) const noexcept {
         return v[O];
     }
     template <std::size_t O, class Box, class V>
-    bool bwd(const detail::interval_of<V>& t, Box& box, V& v) const {
+    CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box& box, V& v) const {
         using I = detail::interval_of<V>;
         if (!detail::narrow(v[O], t)) return false;
         if constexpr (A::is_constant) {
@@ -254,7 +258,7 @@ struct unary : node_tag {
         }
     }
     template <std::size_t O, class Box, class V>
-    bool defined(const Box& box, const V& v) const {
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box& box, const V& v) const {
         using I = detail::interval_of<V>;
         return a.template defined<O + 1>(box, v) && op.defined(detail::as_interval<I>(a.template value<O + 1>(box, v)));
     }
@@ -292,18 +296,18 @@ struct binary : node_tag {
     binary(L left, R right) : l(std::move(left)), r(std::move(right)) {}
 
     template <std::size_t O, class Box, class V>
-    void fwd(const Box& box, V& v) const {
+    CERTIPOSE_DETAIL_INLINE void fwd(const Box& box, V& v) const {
         l.template fwd<O + 1>(box, v);
         r.template fwd<O + 1 + L::slots>(box, v);
         v[O] = Op::template fwd<detail::interval_of<V>>(l.template value<O + 1>(box, v),
                                                          r.template value<O + 1 + L::slots>(box, v));
     }
     template <std::size_t O, class Box, class V>
-    const auto& value(const Box&, const V& v) const noexcept {
+    CERTIPOSE_DETAIL_INLINE const auto& value(const Box&, const V& v) const noexcept {
         return v[O];
     }
     template <std::size_t O, class Box, class V>
-    bool bwd(const detail::interval_of<V>& t, Box& box, V& v) const {
+    CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box& box, V& v) const {
         using I = detail::interval_of<V>;
         constexpr std::size_t lo = O + 1, ro = O + 1 + L::slots;
         if (!detail::narrow(v[O], t)) return false;
@@ -320,7 +324,7 @@ struct binary : node_tag {
         return true;
     }
     template <std::size_t O, class Box, class V>
-    bool defined(const Box& box, const V& v) const {
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box& box, const V& v) const {
         return l.template defined<O + 1>(box, v) && r.template defined<O + 1 + L::slots>(box, v) &&
                Op::defined(r.template value<O + 1 + L::slots>(box, v));
     }
@@ -447,50 +451,50 @@ struct div {
 
 struct neg {
     template <class I>
-    I fwd(const I& a) const { return -a; }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return -a; }
     template <class I>
-    I bwd(const I&, const I& y) const { return -y; }
+    CERTIPOSE_DETAIL_INLINE I bwd(const I&, const I& y) const { return -y; }
     template <class I>
-    bool defined(const I&) const { return true; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I&) const { return true; }
     template <class I>
     I deriv(const I&, const I&) const { return I(-1.0); }
 };
 
 struct sqr_op {
     template <class I>
-    I fwd(const I& a) const { return sqr(a); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return sqr(a); }
     template <class I>
-    I bwd(const I& a, const I& y) const { return expr::detail::two_branches(a, expr::detail::sqrt_enclosure(y)); }
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const { return expr::detail::two_branches(a, expr::detail::sqrt_enclosure(y)); }
     template <class I>
-    bool defined(const I&) const { return true; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I&) const { return true; }
     template <class I>
     I deriv(const I& a, const I&) const { return 2.0 * a; }
 };
 
 struct sqrt_op {
     template <class I>
-    I fwd(const I& a) const { return sqrt(a); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return sqrt(a); }
     template <class I>
-    I bwd(const I& a, const I& y) const {
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const {
         const I yp = expr::detail::non_negative(y);
         if (is_empty(yp)) return yp;
         return intersect(expr::detail::non_negative(a), sqr(yp));
     }
     template <class I>
-    bool defined(const I& a) const { return !is_empty(a) && lower(a) >= 0.0; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I& a) const { return !is_empty(a) && lower(a) >= 0.0; }
     template <class I>
     I deriv(const I&, const I& x) const { return 0.5 / x; }
 };
 
 struct abs_op {
     template <class I>
-    I fwd(const I& a) const { return abs(a); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return abs(a); }
     template <class I>
-    I bwd(const I& a, const I& y) const {
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const {
         return expr::detail::two_branches(a, expr::detail::non_negative(y));
     }
     template <class I>
-    bool defined(const I&) const { return true; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I&) const { return true; }
     template <class I>
     I deriv(const I& a, const I&) const {
         if (lower(a) > 0.0) return I(1.0);
@@ -502,9 +506,9 @@ struct abs_op {
 struct pow_op {
     int n = 2;
     template <class I>
-    I fwd(const I& a) const { return pow(a, n); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return pow(a, n); }
     template <class I>
-    I bwd(const I& a, const I& y) const {
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const {
         if (n == 0) return a;  // y ∋ 1 was checked by the node; no information on a
         if (n == 1) return y;
         if (n == 2) return expr::detail::two_branches(a, expr::detail::sqrt_enclosure(y));
@@ -514,7 +518,7 @@ struct pow_op {
         return expr::detail::pow_projection(a, z, -n);
     }
     template <class I>
-    bool defined(const I& a) const { return n >= 0 || !contains(a, 0.0); }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I& a) const { return n >= 0 || !contains(a, 0.0); }
     template <class I>
     I deriv(const I& a, const I&) const {
         if (n == 0) return I(0.0);
@@ -524,22 +528,22 @@ struct pow_op {
 
 struct sin_op {
     template <class I>
-    I fwd(const I& a) const { return sin(a); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return sin(a); }
     template <class I>
-    I bwd(const I& a, const I& y) const { return expr::detail::periodic_projection(a, y, true); }
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const { return expr::detail::periodic_projection(a, y, true); }
     template <class I>
-    bool defined(const I&) const { return true; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I&) const { return true; }
     template <class I>
     I deriv(const I& a, const I&) const { return cos(a); }
 };
 
 struct cos_op {
     template <class I>
-    I fwd(const I& a) const { return cos(a); }
+    CERTIPOSE_DETAIL_INLINE I fwd(const I& a) const { return cos(a); }
     template <class I>
-    I bwd(const I& a, const I& y) const { return expr::detail::periodic_projection(a, y, false); }
+    CERTIPOSE_DETAIL_INLINE I bwd(const I& a, const I& y) const { return expr::detail::periodic_projection(a, y, false); }
     template <class I>
-    bool defined(const I&) const { return true; }
+    CERTIPOSE_DETAIL_INLINE bool defined(const I&) const { return true; }
     template <class I>
     I deriv(const I& a, const I&) const { return -sin(a); }
 };

@@ -5,7 +5,7 @@
 // makes `Eigen::Matrix3<I> * Eigen::Vector3<I>` ambiguous (STYLE.md); ours converts only from
 // arithmetic types. Why these policies (each measured on this toolchain, STYLE.md):
 //  * arithmetic: `rounded_arith_opp` only. The `_std` and `_exact` policies gave zero-width
-//    results at -O2 and are rejected at compile time (`sound_boost_arith`).
+//    results at -O2, so the class is not a template over the policy: it cannot be misconfigured.
 //  * rounding mode: `save_state_nothing`, i.e. held upward by `rounding_guard<boost_interval>`
 //    (Boost's own `save_state`) once per hot block instead of switched per operation (~4x).
 //  * transcendental functions: glibc ignores the rounding mode, so `rounded_transc_widened`
@@ -25,11 +25,13 @@
 
 #include <cassert>
 #include <cmath>
+#include <concepts>
 #include <limits>
 #include <type_traits>
 
 #include <boost/numeric/interval.hpp>
 
+#include "certipose/detail/config.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/detail/fenv.hpp"
 #include "certipose/interval/operations.hpp"
@@ -97,7 +99,7 @@ using rounding_control = boost::numeric::interval_lib::rounding_control<double>;
 /// round-to-nearest before the guard was reused, at -O2, as the upper bound of [1]/[3] inside it
 /// (zero width, below 1/3). Operands read through this barrier are values the compiler cannot
 /// match with earlier ones, and a volatile asm stays after the guard's fesetround.
-inline double pin(double x) noexcept {
+CERTIPOSE_DETAIL_INLINE double pin(double x) noexcept {
 #if (defined(__GNUC__) || defined(__clang__)) && defined(__SSE2_MATH__)
     asm volatile("" : "+x"(x));
     return x;
@@ -110,27 +112,18 @@ inline double pin(double x) noexcept {
 #endif
 }
 template <class B>
-B pin_bounds(const B& b) noexcept {
+CERTIPOSE_DETAIL_INLINE B pin_bounds(const B& b) noexcept {
     return B(pin(b.lower()), pin(b.upper()), true);
 }
 
-template <class Arith>
-inline constexpr bool is_opp_arith = false;
-template <class T, class R>
-inline constexpr bool is_opp_arith<boost::numeric::interval_lib::rounded_arith_opp<T, R>> = true;
-
 }  // namespace detail
 
-/// True for the Boost arithmetic rounding policies certipose accepts (only the "opposite
-/// trick", the one that stayed sound at -O2 with the mode held upward).
-template <class Arith>
-inline constexpr bool sound_boost_arith = detail::is_opp_arith<Arith>;
-
-template <class Arith = boost::numeric::interval_lib::rounded_arith_opp<double, detail::rounding_control>>
-class basic_boost_interval {
-    static_assert(sound_boost_arith<Arith>,
-                  "certipose: only boost::numeric::interval_lib::rounded_arith_opp is sound with "
-                  "the rounding mode held (the _std/_exact policies give zero-width results at -O2)");
+/// The default interval type of certipose (see the header comment). A class of its own, not an
+/// alias of a Boost template, so that compiler messages say `certipose::boost_interval`.
+class boost_interval {
+    // The "opposite trick", the only Boost arithmetic policy that stayed sound at -O2 with the
+    // mode held upward (see the header comment).
+    using Arith = boost::numeric::interval_lib::rounded_arith_opp<double, detail::rounding_control>;
 
 public:
     using rounding = detail::rounded_transc_widened<double, Arith>;
@@ -152,76 +145,76 @@ public:
         boost::numeric::interval_lib::save_state<rounding> state_;
     };
 
-    constexpr basic_boost_interval() = default;
+    constexpr boost_interval() = default;
     /// A point interval. Only arithmetic types convert implicitly (see the header comment).
     template <class U>
         requires std::is_arithmetic_v<U>
-    basic_boost_interval(U v) : b_(static_cast<double>(v)) {}  // NOLINT(implicit)
+    boost_interval(U v) : b_(static_cast<double>(v)) {}  // NOLINT(implicit)
     /// [lo, hi]; lo > hi or a NaN bound yields the empty interval.
-    basic_boost_interval(double lo, double hi) : b_(make(lo, hi)) {}
-    explicit basic_boost_interval(const base_type& b) : b_(b) {}
+    boost_interval(double lo, double hi) : b_(make(lo, hi)) {}
+    explicit boost_interval(const base_type& b) : b_(b) {}
 
     const base_type& base() const noexcept { return b_; }
 
     /// Set equality (both empty, or same bounds). Not an order: use certainly_/possibly_.
-    friend bool operator==(const basic_boost_interval& a, const basic_boost_interval& b) noexcept {
+    friend bool operator==(const boost_interval& a, const boost_interval& b) noexcept {
         const bool ea = boost::numeric::empty(a.b_), eb = boost::numeric::empty(b.b_);
         return ea || eb ? ea == eb : (a.b_.lower() == b.b_.lower() && a.b_.upper() == b.b_.upper());
     }
 
-    friend basic_boost_interval operator-(const basic_boost_interval& a) { return basic_boost_interval(-a.b_); }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator-(const boost_interval& a) { return boost_interval(-a.b_); }
     // +, − and × are the hot path of every contractor, and Boost's versions branch on emptiness
     // (and × nine ways on signs) before computing. Ours compute first with Boost's own rounding
     // primitives and let the empty set's NaN bounds propagate; see mul() for ×.
-    friend basic_boost_interval operator+(const basic_boost_interval& a, const basic_boost_interval& b) {
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator+(const boost_interval& a, const boost_interval& b) {
         detail::assert_rounding_held();
         rounding rnd;
         const base_type x = detail::pin_bounds(a.b_), y = detail::pin_bounds(b.b_);
         return raw(rnd.add_down(x.lower(), y.lower()), rnd.add_up(x.upper(), y.upper()));
     }
-    friend basic_boost_interval operator-(const basic_boost_interval& a, const basic_boost_interval& b) {
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator-(const boost_interval& a, const boost_interval& b) {
         detail::assert_rounding_held();
         rounding rnd;
         const base_type x = detail::pin_bounds(a.b_), y = detail::pin_bounds(b.b_);
         return raw(rnd.sub_down(x.lower(), y.upper()), rnd.sub_up(x.upper(), y.lower()));
     }
-    friend basic_boost_interval operator*(const basic_boost_interval& a, const basic_boost_interval& b) {
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator*(const boost_interval& a, const boost_interval& b) {
         detail::assert_rounding_held();
         const base_type x = detail::pin_bounds(a.b_), y = detail::pin_bounds(b.b_);
-        const basic_boost_interval r = mul(x.lower(), x.upper(), y.lower(), y.upper());
+        const boost_interval r = mul(x.lower(), x.upper(), y.lower(), y.upper());
         if (!is_empty_fast(r)) [[likely]] return r;
-        return basic_boost_interval(x * y);
+        return boost_interval(x * y);
     }
-    friend basic_boost_interval operator/(const basic_boost_interval& a, const basic_boost_interval& b) {
+    friend boost_interval operator/(const boost_interval& a, const boost_interval& b) {
         detail::assert_rounding_held();
-        return basic_boost_interval(detail::pin_bounds(a.b_) / detail::pin_bounds(b.b_));
+        return boost_interval(detail::pin_bounds(a.b_) / detail::pin_bounds(b.b_));
     }
     // Mixed with double: `a + 1.0`, `2.0 * a` (a NaN double yields the empty set).
-    friend basic_boost_interval operator+(const basic_boost_interval& a, double d) { return a + basic_boost_interval(d); }
-    friend basic_boost_interval operator+(double d, const basic_boost_interval& a) { return basic_boost_interval(d) + a; }
-    friend basic_boost_interval operator-(const basic_boost_interval& a, double d) { return a - basic_boost_interval(d); }
-    friend basic_boost_interval operator-(double d, const basic_boost_interval& a) { return basic_boost_interval(d) - a; }
-    friend basic_boost_interval operator*(const basic_boost_interval& a, double d) {
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator+(const boost_interval& a, double d) { return a + boost_interval(d); }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator+(double d, const boost_interval& a) { return boost_interval(d) + a; }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator-(const boost_interval& a, double d) { return a - boost_interval(d); }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator-(double d, const boost_interval& a) { return boost_interval(d) - a; }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator*(const boost_interval& a, double d) {
         detail::assert_rounding_held();
         const base_type x = detail::pin_bounds(a.b_);
         const double y = detail::pin(d);
-        const basic_boost_interval r = mul(x.lower(), x.upper(), y, y);
+        const boost_interval r = mul(x.lower(), x.upper(), y, y);
         if (!is_empty_fast(r)) [[likely]] return r;
-        return basic_boost_interval(x * y);
+        return boost_interval(x * y);
     }
-    friend basic_boost_interval operator*(double d, const basic_boost_interval& a) { return a * d; }
-    friend basic_boost_interval operator/(const basic_boost_interval& a, double d) { detail::assert_rounding_held(); return basic_boost_interval(detail::pin_bounds(a.b_) / detail::pin(d)); }
-    friend basic_boost_interval operator/(double d, const basic_boost_interval& a) { detail::assert_rounding_held(); return basic_boost_interval(detail::pin(d) / detail::pin_bounds(a.b_)); }
+    CERTIPOSE_DETAIL_INLINE friend boost_interval operator*(double d, const boost_interval& a) { return a * d; }
+    friend boost_interval operator/(const boost_interval& a, double d) { detail::assert_rounding_held(); return boost_interval(detail::pin_bounds(a.b_) / detail::pin(d)); }
+    friend boost_interval operator/(double d, const boost_interval& a) { detail::assert_rounding_held(); return boost_interval(detail::pin(d) / detail::pin_bounds(a.b_)); }
 
-    basic_boost_interval& operator+=(const basic_boost_interval& o) { return *this = *this + o; }
-    basic_boost_interval& operator-=(const basic_boost_interval& o) { return *this = *this - o; }
-    basic_boost_interval& operator*=(const basic_boost_interval& o) { return *this = *this * o; }
-    basic_boost_interval& operator/=(const basic_boost_interval& o) { return *this = *this / o; }
+    boost_interval& operator+=(const boost_interval& o) { return *this = *this + o; }
+    boost_interval& operator-=(const boost_interval& o) { return *this = *this - o; }
+    boost_interval& operator*=(const boost_interval& o) { return *this = *this * o; }
+    boost_interval& operator/=(const boost_interval& o) { return *this = *this / o; }
 
 private:
     // Bounds computed with the mode held upward; NaN bounds mean empty (checking_base).
-    static basic_boost_interval raw(double lo, double hi) { return basic_boost_interval(base_type(lo, hi, true)); }
-    static bool is_empty_fast(const basic_boost_interval& r) { return !(r.b_.lower() <= r.b_.upper()); }
+    CERTIPOSE_DETAIL_INLINE static boost_interval raw(double lo, double hi) { return boost_interval(base_type(lo, hi, true)); }
+    static bool is_empty_fast(const boost_interval& r) { return !(r.b_.lower() <= r.b_.upper()); }
 
     // [al, au] × [bl, bu] without Boost's sign dispatch: all four corner products rounded up,
     // the lower bound through the opposite trick as −max(x · −y). A corner 0 · ∞ is NaN and
@@ -229,7 +222,7 @@ private:
     // exactly right, since its true contribution (0 · finite = 0) is bracketed by the corners
     // next to it. Only a NaN in the first corner survives (as do an empty operand's NaN
     // bounds): the caller then falls back to Boost's exact case analysis.
-    static basic_boost_interval mul(double al, double au, double bl, double bu) {
+    CERTIPOSE_DETAIL_INLINE static boost_interval mul(double al, double au, double bl, double bu) {
         rounding rnd;
         const auto max = [](double x, double y) { return x > y ? x : y; };
         double l = rnd.mul_up(al, -bl);
@@ -251,73 +244,72 @@ private:
 };
 
 // Namespace-scope (not hidden friends) so that both `lower(x)` and `certipose::lower(x)` work.
-template <class A>
-double lower(const basic_boost_interval<A>& a) noexcept { return a.base().lower(); }
-template <class A>
-double upper(const basic_boost_interval<A>& a) noexcept { return a.base().upper(); }
-template <class A>
-bool is_empty(const basic_boost_interval<A>& a) noexcept { return boost::numeric::empty(a.base()); }
+// Templates constrained to boost_interval rather than plain functions: a double argument must
+// not convert to an interval silently (`sqrt(2.0)` inside namespace certipose stays an error).
+template <std::same_as<boost_interval> A>
+CERTIPOSE_DETAIL_INLINE double lower(const A& a) noexcept { return a.base().lower(); }
+template <std::same_as<boost_interval> A>
+CERTIPOSE_DETAIL_INLINE double upper(const A& a) noexcept { return a.base().upper(); }
+template <std::same_as<boost_interval> A>
+CERTIPOSE_DETAIL_INLINE bool is_empty(const A& a) noexcept { return boost::numeric::empty(a.base()); }
 
-template <class A>
-basic_boost_interval<A> sqr(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+CERTIPOSE_DETAIL_INLINE A sqr(const A& a) {
     detail::assert_rounding_held();
-    return basic_boost_interval<A>(boost::numeric::square(detail::pin_bounds(a.base())));
+    return A(boost::numeric::square(detail::pin_bounds(a.base())));
 }
-template <class A>
-basic_boost_interval<A> sqrt(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A sqrt(const A& a) {
     detail::assert_rounding_held();
-    return basic_boost_interval<A>(boost::numeric::sqrt(detail::pin_bounds(a.base())));
+    return A(boost::numeric::sqrt(detail::pin_bounds(a.base())));
 }
-template <class A>
-basic_boost_interval<A> abs(const basic_boost_interval<A>& a) {
-    return basic_boost_interval<A>(boost::numeric::abs(a.base()));
+template <std::same_as<boost_interval> A>
+A abs(const A& a) {
+    return A(boost::numeric::abs(a.base()));
 }
-template <class A>
-basic_boost_interval<A> pow(const basic_boost_interval<A>& a, int n) {
+template <std::same_as<boost_interval> A>
+A pow(const A& a, int n) {
     detail::assert_rounding_held();
     // Boost returns the empty set for [0,0]^0, but x^0 = 1 everywhere (as std::pow says);
     // and it negates n, which overflows for INT_MIN.
-    if (n == 0) return is_empty(a) ? a : basic_boost_interval<A>(1.0);
+    if (n == 0) return is_empty(a) ? a : A(1.0);
     if (n == std::numeric_limits<int>::min()) return sqr(pow(a, n / 2));
-    return basic_boost_interval<A>(boost::numeric::pow(detail::pin_bounds(a.base()), n));
+    return A(boost::numeric::pow(detail::pin_bounds(a.base()), n));
 }
 
 namespace detail {
 // Outward widening may step past ±1; the true range of sin/cos never does.
-template <class A>
-basic_boost_interval<A> clamp_unit(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A clamp_unit(const A& a) {
     if (is_empty(a)) return a;
-    return basic_boost_interval<A>(std::max(-1.0, lower(a)), std::min(1.0, upper(a)));
+    return A(std::max(-1.0, lower(a)), std::min(1.0, upper(a)));
 }
 }  // namespace detail
 
-template <class A>
-basic_boost_interval<A> sin(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A sin(const A& a) {
     detail::assert_rounding_held();
-    return detail::clamp_unit(basic_boost_interval<A>(boost::numeric::sin(detail::pin_bounds(a.base()))));
+    return detail::clamp_unit(A(boost::numeric::sin(detail::pin_bounds(a.base()))));
 }
-template <class A>
-basic_boost_interval<A> cos(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A cos(const A& a) {
     detail::assert_rounding_held();
-    return detail::clamp_unit(basic_boost_interval<A>(boost::numeric::cos(detail::pin_bounds(a.base()))));
+    return detail::clamp_unit(A(boost::numeric::cos(detail::pin_bounds(a.base()))));
 }
-template <class A>
-basic_boost_interval<A> acos(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A acos(const A& a) {
     detail::assert_rounding_held();
-    return basic_boost_interval<A>(boost::numeric::acos(detail::pin_bounds(a.base())));
+    return A(boost::numeric::acos(detail::pin_bounds(a.base())));
 }
-template <class A>
-basic_boost_interval<A> atan(const basic_boost_interval<A>& a) {
+template <std::same_as<boost_interval> A>
+A atan(const A& a) {
     detail::assert_rounding_held();
-    return basic_boost_interval<A>(boost::numeric::atan(detail::pin_bounds(a.base())));
+    return A(boost::numeric::atan(detail::pin_bounds(a.base())));
 }
 
-/// The default interval type of certipose.
-using boost_interval = basic_boost_interval<>;
-
-template <class Arith>
-struct interval_traits<basic_boost_interval<Arith>> {
-    using I = basic_boost_interval<Arith>;
+template <>
+struct interval_traits<boost_interval> {
+    using I = boost_interval;
     using rounding_guard = typename I::guard;
     static I empty() { return I(I::base_type::empty()); }
     static I whole() { return I(I::base_type::whole()); }

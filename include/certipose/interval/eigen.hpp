@@ -10,7 +10,7 @@
 // Math functions Eigen calls unqualified (`abs`, `sqrt`, `abs2`, `conj`, `real`, `imag`) are
 // found by ADL in namespace certipose.
 //
-// This header covers `boost_interval` (any `basic_boost_interval<A>`) and needs no CGAL. The
+// This header covers `boost_interval` and needs no CGAL. The
 // same traits for `cgal_interval` are in certipose/interval/cgal_eigen.hpp, which needs
 // certipose::cgal. A user-written backend gets them by specialising the three Eigen templates
 // with the `certipose::eigen_interval_*` bases below, exactly as those two headers do.
@@ -109,32 +109,32 @@ struct eigen_interval_score {
 
 namespace Eigen {
 
-template <class A>
-struct NumTraits<certipose::basic_boost_interval<A>>
-    : certipose::eigen_interval_num_traits<certipose::basic_boost_interval<A>> {};
+template <>
+struct NumTraits<certipose::boost_interval>
+    : certipose::eigen_interval_num_traits<certipose::boost_interval> {};
 
-template <class A, class BinaryOp>
-struct ScalarBinaryOpTraits<certipose::basic_boost_interval<A>, double, BinaryOp> {
-    using ReturnType = certipose::basic_boost_interval<A>;
+template <class BinaryOp>
+struct ScalarBinaryOpTraits<certipose::boost_interval, double, BinaryOp> {
+    using ReturnType = certipose::boost_interval;
 };
-template <class A, class BinaryOp>
-struct ScalarBinaryOpTraits<double, certipose::basic_boost_interval<A>, BinaryOp> {
-    using ReturnType = certipose::basic_boost_interval<A>;
+template <class BinaryOp>
+struct ScalarBinaryOpTraits<double, certipose::boost_interval, BinaryOp> {
+    using ReturnType = certipose::boost_interval;
 };
 
 namespace internal {
 
-template <class A>
-struct scalar_score_coeff_op<certipose::basic_boost_interval<A>>
-    : certipose::eigen_interval_score<certipose::basic_boost_interval<A>> {};
-template <class A>
-struct functor_traits<scalar_score_coeff_op<certipose::basic_boost_interval<A>>> {
+template <>
+struct scalar_score_coeff_op<certipose::boost_interval>
+    : certipose::eigen_interval_score<certipose::boost_interval> {};
+template <>
+struct functor_traits<scalar_score_coeff_op<certipose::boost_interval>> {
     enum { Cost = 10, PacketAccess = false };
 };
 
-template <class A>
-struct abs2_impl<certipose::basic_boost_interval<A>> {
-    static certipose::basic_boost_interval<A> run(const certipose::basic_boost_interval<A>& x) {
+template <>
+struct abs2_impl<certipose::boost_interval> {
+    static certipose::boost_interval run(const certipose::boost_interval& x) {
         return sqr(x);
     }
 };

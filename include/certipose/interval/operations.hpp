@@ -14,6 +14,7 @@
 #include <numbers>
 #include <utility>
 
+#include "certipose/detail/config.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/detail/fenv.hpp"
 
@@ -23,7 +24,7 @@ namespace certipose {
 
 /// Smallest interval containing both (the paper's ⊔). Empty is the identity.
 template <Interval I>
-I hull(const I& a, const I& b) {
+CERTIPOSE_DETAIL_INLINE I hull(const I& a, const I& b) {
     if (is_empty(a)) return b;
     if (is_empty(b)) return a;
     return I(std::min(lower(a), lower(b)), std::max(upper(a), upper(b)));
@@ -31,7 +32,7 @@ I hull(const I& a, const I& b) {
 
 /// Intersection (the paper's ∩); empty when disjoint.
 template <Interval I>
-I intersect(const I& a, const I& b) {
+CERTIPOSE_DETAIL_INLINE I intersect(const I& a, const I& b) {
     if (is_empty(a) || is_empty(b)) return interval_traits<I>::empty();
     const double l = std::max(lower(a), lower(b));
     const double u = std::min(upper(a), upper(b));
@@ -77,7 +78,7 @@ bool contains(const I& a, double x) {
 
 /// a ⊆ b. The empty set is a subset of everything.
 template <Interval I>
-bool subset(const I& a, const I& b) {
+CERTIPOSE_DETAIL_INLINE bool subset(const I& a, const I& b) {
     if (is_empty(a)) return true;
     return !is_empty(b) && lower(b) <= lower(a) && upper(a) <= upper(b);
 }
