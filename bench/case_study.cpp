@@ -8,6 +8,8 @@
 #include <certipose/occlusion/cgal_boolean_occlusion.hpp>
 #include <certipose/solver/pose_solver.hpp>
 
+#include <type_traits>
+
 namespace {
 
 const certipose::sample_part& part() {
@@ -20,9 +22,8 @@ void run(benchmark::State& state) {
     const certipose::thin_lens_camera camera(certipose::thin_lens_parameters{
         .focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
         .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048});
-    using solver_t = certipose::pose_solver<certipose::boost_interval, certipose::thin_lens_camera,
-                                            certipose::paper_position_constraints, certipose::hc4_contraction,
-                                            certipose::largest_first, Occlusion>;
+    using solver_t = std::conditional_t<std::is_same_v<Occlusion, certipose::aabb_occlusion>, certipose::pose_solver<>,
+                                        certipose::pose_solver<certipose::with_occlusion<Occlusion>>>;
     const solver_t solver(part().mesh, camera, {.min_view_angle = 0.35});
     certipose::solve_stats st;
     for (auto _ : state) {

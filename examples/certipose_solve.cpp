@@ -11,27 +11,20 @@
 //
 // The pipeline is `certipose::pose_solver` with the defaults (Boost intervals, the paper's
 // constraints with HC4, largest-first, the paper's orientation) and the occlusion policy chosen
-// on the command line; progress goes to stderr when it is a terminal.
+// on the command line. The camera, whichever model the JSON names, is a `calibrated_camera`, so
+// each occlusion policy instantiates the pipeline once (the aabb one is precompiled).
+// Progress goes to stderr when it is a terminal; when a facet gets no VALID box one hint line
+// says what stayed undecided and what to try.
 #include "certipose_solve_cli.hpp"
 
-#include <certipose/error.hpp>
-#include <certipose/interval/boost_interval.hpp>
+#include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
-#include <certipose/io/ply.hpp>
-#include <certipose/io/read_mesh.hpp>
-#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
-#include <certipose/occlusion/cgal_boolean_occlusion.hpp>
-#include <certipose/occlusion/no_occlusion.hpp>
-#include <certipose/solver/pose_solver.hpp>
-#include <certipose/solver/result.hpp>
-#include <certipose/solver/task.hpp>
 
 #include <chrono>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
-#include <variant>
 
 #include <unistd.h>
 
@@ -49,17 +42,15 @@ std::function<bool(const certipose::solve_progress&)> progress_printer(bool quie
     };
 }
 
-template <class Occlusion, class Camera>
-certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const Camera& camera,
+template <class Occlusion>
+certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                       const certipose::inspection_task& task, std::size_t facet,
                                       const certipose::solve_options& options) {
-    using solver = certipose::pose_solver<I, Camera, certipose::paper_position_constraints, certipose::hc4_contraction,
-                                          certipose::largest_first, Occlusion>;
+    using solver = certipose::pose_solver<certipose::with_occlusion<Occlusion, certipose::with_camera<certipose::calibrated_camera>>>;
     return solver(mesh, camera, task).solve(facet, options);
 }
 
-template <class Camera>
-certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const Camera& camera,
+certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                  const certipose::inspection_task& task, const certipose_solve::arguments& args,
                                  certipose::solve_options options) {
     options.progress = progress_printer(args.quiet);
@@ -77,6 +68,30 @@ certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const Cam
     }
     if (options.progress) std::fputc('\n', stderr);
     return r;
+}
+
+/// What to try when most BOUNDARY boxes are undecided for `why`.
+std::string advice(certipose::boundary_reason why, const certipose_solve::arguments& args) {
+    using certipose::boundary_reason;
+    const std::string smaller_eps = "try a smaller --position-eps (e.g. " + certipose::detail::format_double(args.position_eps / 2) + ")";
+    switch (why) {
+        case boundary_reason::facet_contact:
+        case boundary_reason::backface: return "boxes reaching the facet's plane stay undecided; " + smaller_eps;
+        case boundary_reason::distance:
+            return "the in-focus distance range cuts through every box of this size; " + smaller_eps +
+                   ", or a camera with a deeper depth of field";
+        case boundary_reason::view_angle:
+            return "the viewing-angle cone cuts through every box of this size; " + smaller_eps +
+                   " or a smaller task.min_view_angle";
+        case boundary_reason::constraint: return "a constraint of the set stayed undecided; " + smaller_eps;
+        case boundary_reason::occlusion:
+            return "the facet is partly hidden from every box of this size (occlusion partial); " + smaller_eps;
+        case boundary_reason::field_of_view:
+            return "no orientation keeps the facet in the image from any certified position box; " + smaller_eps +
+                   " or --orientation-eps, or a wider lens";
+        case boundary_reason::budget: return "the budget ended the run first; raise --max-boxes or --time-limit";
+    }
+    return smaller_eps;
 }
 
 /// One line per error, whatever the message holds.
@@ -107,8 +122,7 @@ int main(int argc, char** argv) {
                 std::chrono::duration<double>(*args.time_limit_seconds));
         options.validate();
 
-        const auto result = std::visit(
-            [&](const auto& camera) { return solve(mesh, camera, input.task, args, options); }, input.camera);
+        const auto result = solve(mesh, input.calibrated(), input.task, args, options);
 
         const certipose::result_document document =
             certipose::make_result_document(result, mesh, input.camera, input.task, options);
@@ -125,11 +139,22 @@ int main(int argc, char** argv) {
                         st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests);
             std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
                         st.orientation_certifications);
+            if (st.boundary > 0)
+                std::printf("  boundary boxes undecided on: %s\n", certipose::boundary_summary(st).c_str());
             if (st.reason != certipose::termination::completed)
-                std::printf("  stopped early: %s (unfinished boxes are reported as boundary)\n",
+                std::printf("  stopped early: %s ended the run (unfinished boxes are reported as boundary)\n",
                             certipose::to_string(st.reason));
+            if (!st.occlusion_checked)
+                std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint "
+                            "but occlusion\n");
             std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply ? " and " : "",
                         args.ply ? args.ply->string().c_str() : "");
+            if (st.valid == 0) {
+                const auto why = certipose::main_boundary_reason(st);
+                std::fprintf(stderr, "certipose-solve: hint: no VALID box for facet %zu (boundary boxes undecided on: %s); %s\n",
+                             args.facet, certipose::boundary_summary(st).c_str(),
+                             why ? advice(*why, args).c_str() : "the facet cannot be inspected with this camera and task");
+            }
         }
         return certipose_solve::exit_ok;
     } catch (const certipose::error& e) {

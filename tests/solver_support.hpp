@@ -8,6 +8,7 @@
 #include <random>
 #include <set>
 #include <tuple>
+#include <type_traits>
 
 #include <certipose/bisection/round_robin.hpp>
 #include <certipose/camera.hpp>
@@ -96,8 +97,27 @@ inline std::size_t upward_facet(const triangle_mesh& mesh) {
     return best;
 }
 
+/// The default pipeline with another occlusion policy or interval type (pose_solver<> itself,
+/// the precompiled instantiation, when both are the defaults).
 template <class Occlusion, class I = boost_interval>
-using default_solver = pose_solver<I, thin_lens_camera, paper_position_constraints, hc4_contraction, largest_first, Occlusion>;
+using default_solver = std::conditional_t<std::is_same_v<Occlusion, aabb_occlusion> && std::is_same_v<I, boost_interval>,
+                                          pose_solver<>, pose_solver<with_occlusion<Occlusion, with_interval<I>>>>;
+
+/// The VALID boxes of a result as exact bound tuples (to compare runs box for box).
+template <class I>
+std::set<std::array<double, 12>> valid_box_set(const solve_result<I>& r) {
+    std::set<std::array<double, 12>> s;
+    for (const auto& cb : r.boxes)
+        if (cb.cls == box_class::valid) {
+            std::array<double, 12> k{};
+            for (int d = 0; d < 3; ++d) {
+                k[2 * d] = lower(cb.box.position[d]), k[2 * d + 1] = upper(cb.box.position[d]);
+                k[6 + 2 * d] = lower(cb.box.orientation[d]), k[7 + 2 * d] = upper(cb.box.orientation[d]);
+            }
+            s.insert(k);
+        }
+    return s;
+}
 
 }  // namespace solver_test
 

@@ -3,9 +3,11 @@
 // Include this for everything camera-related: `CameraModel` with `fov_half_angles`,
 // `distance_range` and `capped_distance_range` (camera/camera_model.hpp), the paper's thin-lens
 // camera with depth of field (camera/thin_lens_camera.hpp, the default) and an ideal pinhole
-// camera with user distance bounds (camera/pinhole_camera.hpp). No CGAL.
+// camera with user distance bounds (camera/pinhole_camera.hpp), and `calibrated_camera`, any of
+// them reduced to the values the solver reads (camera/calibrated_camera.hpp). No CGAL.
 #pragma once
 
+#include <certipose/camera/calibrated_camera.hpp>
 #include <certipose/camera/camera_model.hpp>
 #include <certipose/camera/pinhole_camera.hpp>
 #include <certipose/camera/thin_lens_camera.hpp>

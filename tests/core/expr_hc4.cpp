@@ -106,3 +106,28 @@ TEST_CASE("bad parameters throw invalid_argument naming the field") {
 }
 
 }  // namespace
+
+// The expression functions are reachable as certipose::..., not only through ADL.
+TEST_CASE("qualified expression functions: certipose::sqr, certipose::dot, ...") {
+    using I = certipose::boost_interval;
+    constexpr certipose::var<0> x;
+    constexpr certipose::var<1> y;
+    const auto p = certipose::vec(x, y, 0.0);
+    // (x − 1)² + y² ≤ 1 and p·(1, 0, 0) ≥ 1.5 (x ≥ 1.5): x ∈ [1.5, 2].
+    auto c = certipose::hc4(certipose::sqr(x - 1.0) + certipose::sqr(y) <= 1.0,
+                            certipose::dot(p, certipose::vec(1.0, 0.0, 0.0)) >= 1.5,
+                            certipose::norm(certipose::cross(p, certipose::vec(0.0, 0.0, 1.0))) <= 2.0,
+                            certipose::sqrt(certipose::abs(x)) + certipose::pow(y, 2) + certipose::sin(y) +
+                                    certipose::cos(y) <= 10.0);
+    auto b = certipose::interval_box<I, 2>::from_bounds({{{-10, 10}, {-10, 10}}});
+    c.contract(b);
+    REQUIRE_FALSE(certipose::is_empty(b));
+    CHECK(certipose::lower(b[0]) >= 1.5 - 1e-12);
+    CHECK(certipose::upper(b[0]) <= 2.0 + 1e-12);
+    CHECK(certipose::upper(b[1]) <= 1.0 + 1e-12);
+    // The interval functions of the same names still resolve for intervals.
+    const certipose::rounding_guard<I> rounding;
+    const I four = certipose::sqr(I(2.0));
+    CHECK(certipose::lower(certipose::sqrt(four)) <= 2.0);
+    CHECK(certipose::upper(certipose::sqrt(four)) >= 2.0);
+}

@@ -112,6 +112,7 @@ void check_same_document(const certipose::result_document& a, const certipose::r
     REQUIRE(a.boxes.size() == b.boxes.size());
     for (std::size_t i = 0; i < a.boxes.size(); ++i) {
         CHECK(a.boxes[i].cls == b.boxes[i].cls);
+        CHECK(a.boxes[i].reason == b.boxes[i].reason);
         for (int d = 0; d < 3; ++d)
             for (int k = 0; k < 2; ++k) {
                 CHECK(same_bits(a.boxes[i].position[d][k], b.boxes[i].position[d][k]));
@@ -128,6 +129,8 @@ void check_same_document(const certipose::result_document& a, const certipose::r
     CHECK(s.bisections == t.bisections);
     CHECK(s.occlusion_tests == t.occlusion_tests);
     CHECK(s.orientation_certifications == t.orientation_certifications);
+    CHECK(s.boundary_reasons == t.boundary_reasons);
+    CHECK(s.occlusion_checked == t.occlusion_checked);
     CHECK(same_bits(s.seconds, t.seconds));
     CHECK(same_bits(s.seconds_position, t.seconds_position));
     CHECK(same_bits(s.seconds_orientation, t.seconds_orientation));
@@ -149,9 +152,11 @@ certipose::solve_result<I> sample_result() {
                            {{{-3.141592653589793, -1.5}, {0.1, 0.48}, {-0.19, 0.19}}})});
     r.boxes.push_back({certipose::box_class::boundary,
                        box({{{-1e-300, 5e-324}, {1e10, 1.7976931348623157e308}, {-2.5, -2.5}}},
-                           {{{0, 0}, {std::nextafter(1.0, 2.0), 2.0}, {-0.0, 0.0}}})});
+                           {{{0, 0}, {std::nextafter(1.0, 2.0), 2.0}, {-0.0, 0.0}}}),
+                       certipose::boundary_reason::view_angle});
     r.stats.valid = 1;
     r.stats.boundary = 1;
+    r.stats.boundary_reasons[static_cast<std::size_t>(certipose::boundary_reason::view_angle)] = 1;
     r.stats.position_valid = 7;
     r.stats.position_boundary = 11;
     r.stats.contractions = 123456789012ULL;
@@ -550,10 +555,53 @@ TEST_CASE_TEMPLATE("the result JSON round-trips every double exactly", I, CERTIP
     CHECK(raw["boxes"][1]["position"][0].size() == 2);
     CHECK(raw["stats"]["valid"] == 1);
     CHECK(raw["stats"]["termination"] == "deadline");
+    // Extras: why each BOUNDARY box is undecided, counted per reason; occlusion was checked.
+    CHECK(raw["boxes"][1]["undecided"] == "view_angle");
+    CHECK_FALSE(raw["boxes"][0].contains("undecided"));
+    CHECK_FALSE(raw["boxes"][0].contains("occlusion"));
+    CHECK(raw["stats"]["boundary_reasons"]["view_angle"] == 1);
+    CHECK(raw["stats"]["boundary_reasons"]["occlusion"] == 0);
+    CHECK(raw["stats"]["occlusion_checked"] == true);
     CHECK(raw["settings"]["orientation_eps"] == 0.38);
     // One member per line, one box per line: "{", 4 members, "boxes": [, 2 boxes, "],", stats, "}".
     const std::string text = slurp(file);
     CHECK(std::count(text.begin(), text.end(), '\n') == 11);
+}
+
+TEST_CASE("a result whose occlusion was not checked says so on every VALID box") {
+    using I = certipose::boost_interval;
+    const auto mesh = tetrahedron();
+    const auto in = certipose::parse_camera_task(design_input);
+    auto result = sample_result<I>();
+    result.stats.occlusion_checked = false;
+    const auto doc = certipose::make_result_document(result, mesh, in.camera, in.task, {});
+    const auto raw = certipose::result_to_json(doc);
+    CHECK(raw["boxes"][0]["occlusion"] == "unchecked");
+    CHECK_FALSE(raw["boxes"][1].contains("occlusion"));  // BOUNDARY boxes certify nothing anyway
+    CHECK(raw["stats"]["occlusion_checked"] == false);
+    CHECK_FALSE(certipose::result_from_json(nlohmann::json::parse(raw.dump())).stats.occlusion_checked);
+}
+
+TEST_CASE("boundary summaries name the reasons, most frequent first") {
+    certipose::solve_stats s;
+    CHECK(certipose::boundary_summary(s) == "none");
+    CHECK_FALSE(certipose::main_boundary_reason(s));
+    s.boundary_reasons[static_cast<std::size_t>(certipose::boundary_reason::view_angle)] = 124;
+    s.boundary_reasons[static_cast<std::size_t>(certipose::boundary_reason::occlusion)] = 1000;
+    CHECK(certipose::boundary_summary(s) == "occlusion 1000, view_angle 124");
+    CHECK(certipose::main_boundary_reason(s) == certipose::boundary_reason::occlusion);
+    // Reading back: an unknown reason is an error naming the box's path.
+    const auto in = certipose::parse_camera_task(design_input);
+    const auto doc = certipose::make_result_document(sample_result<certipose::boost_interval>(), tetrahedron(), in.camera,
+                                                     in.task, {});
+    auto j = nlohmann::json::parse(certipose::result_to_json(doc).dump());
+    j["boxes"][1]["undecided"] = "no such reason";
+    try {
+        (void)certipose::result_from_json(j);
+        FAIL("an unknown reason was accepted");
+    } catch (const certipose::invalid_argument& e) {
+        CHECK(e.field() == "boxes[1].undecided");
+    }
 }
 
 TEST_CASE("result JSON: random doubles survive the text exactly") {

@@ -17,20 +17,7 @@ TEST_CASE("boolean and aabb occlusion certify the same position boxes on a small
     // Both are exact on VISIBLE and neither says VISIBLE where a sight line is blocked; the paving
     // of a box both call VISIBLE is the same, and boxes the boolean test discards as OCCLUDED
     // hold no visible sub-box, so the VALID sets coincide.
-    const auto valid_set = [](const auto& r) {
-        std::set<std::array<double, 12>> s;
-        for (const auto& cb : r.boxes)
-            if (cb.cls == box_class::valid) {
-                std::array<double, 12> k{};
-                for (int d = 0; d < 3; ++d) {
-                    k[2 * d] = lower(cb.box.position[d]), k[2 * d + 1] = upper(cb.box.position[d]);
-                    k[6 + 2 * d] = lower(cb.box.orientation[d]), k[7 + 2 * d] = upper(cb.box.orientation[d]);
-                }
-                s.insert(k);
-            }
-        return s;
-    };
-    CHECK(valid_set(fast) == valid_set(exact));
+    CHECK(valid_box_set(fast) == valid_box_set(exact));
     // No order between the BOUNDARY counts is asserted: each policy may discard a box the other
     // bisects (boolean: multi-plane occluders; aabb: walls touching the facet edge, where
     // Algorithm 2's closed-facet contact says PARTIAL), so either count may be the larger.

@@ -3,9 +3,19 @@
 // A position constraint set is both a Contractor (narrow a position box without losing any
 // position that satisfies it) and a BoxTest (certify that every position of a box satisfies
 // it, or that none does) on `position_box<I>`. The solver builds one per facet from a
-// `position_problem`; a user-written set is a class template over the interval type with that
-// constructor, and `all_of` combines sets (e.g. the paper's set plus "stay above the conveyor").
+// `position_problem` and, when the set declares `using parameters = ...;`, from a value of that
+// type too — the run-time configuration of a user's set (a keep-in sphere's centre and radius),
+// given once to the solver (`pose_solver<P>::setup::constraints`). A user-written set is a class
+// template over the interval type; `all_of` combines sets (e.g. the paper's set plus "stay above
+// the conveyor"). A set may also say which of its constraints stayed undecided on a box
+// (`undecided(box)`), so that BOUNDARY boxes explain themselves.
 #pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
 
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/contractor/concept.hpp"
@@ -22,8 +32,96 @@ struct position_problem {
     inspection_task task;    ///< θ_v and the resolution requirement
 };
 
+/// Why a BOUNDARY box was left undecided: the first constraint (DESIGN.md §3) that could be
+/// proven neither true nor false over the whole box, or the budget that ended the run first.
+enum class boundary_reason : std::uint8_t {
+    facet_contact,  ///< constraint 1: the box may touch the facet
+    distance,       ///< constraint 2: d_min ≤ ‖p − q‖ ≤ d_max undecided (focus, resolution)
+    backface,       ///< constraint 3: the box may reach the facet's plane
+    view_angle,     ///< constraint 4: the viewing angle to the normal is undecided
+    constraint,     ///< a user constraint set (one that does not say which of its constraints)
+    occlusion,      ///< constraint 6: some sight lines blocked, some free (occlusion PARTIAL)
+    field_of_view,  ///< constraint 5: no orientation box certified, even at ε_p
+    budget          ///< not decided: a box budget, deadline or cancellation ended the run
+};
+inline constexpr std::size_t boundary_reason_count = 8;
+
+/// "facet_contact", "distance", ... (JSON, messages).
+constexpr std::string_view to_string(boundary_reason r) noexcept {
+    switch (r) {
+        case boundary_reason::facet_contact: return "facet_contact";
+        case boundary_reason::distance: return "distance";
+        case boundary_reason::backface: return "backface";
+        case boundary_reason::view_angle: return "view_angle";
+        case boundary_reason::constraint: return "constraint";
+        case boundary_reason::occlusion: return "occlusion";
+        case boundary_reason::field_of_view: return "field_of_view";
+        case boundary_reason::budget: return "budget";
+    }
+    return "?";
+}
+
+/// The parameters a set takes besides the problem: `typename S::parameters`, or `no_parameters`.
+struct no_parameters {
+    friend bool operator==(no_parameters, no_parameters) = default;
+};
+
+namespace detail {
+template <class S>
+struct parameters_of {
+    using type = no_parameters;
+};
+template <class S>
+    requires requires { typename S::parameters; }
+struct parameters_of<S> {
+    using type = typename S::parameters;
+};
+}  // namespace detail
+
+template <class S>
+using constraint_parameters_t = typename detail::parameters_of<S>::type;
+
+/// A set built from the problem and the parameters it declares.
+template <class S>
+concept ParameterizedConstraintSet =
+    requires { typename S::parameters; } &&
+    std::constructible_from<S, const position_problem&, const typename S::parameters&>;
+
+/// A set that can be built for one facet: from the problem alone, or from the problem and its
+/// declared parameters.
+template <class S>
+concept ConstructibleConstraintSet = ParameterizedConstraintSet<S> || std::constructible_from<S, const position_problem&>;
+
+/// Builds `S` for `problem` with `parameters` (ignored by a set that declares none).
+template <ConstructibleConstraintSet S>
+S make_constraint_set(const position_problem& problem, const constraint_parameters_t<S>& parameters) {
+    if constexpr (ParameterizedConstraintSet<S>)
+        return S(problem, parameters);
+    else
+        return S(problem);
+}
+
 template <class C, class I>
 concept PositionConstraintSet = Interval<I> && Contractor<C, position_box<I>> && BoxTest<C, position_box<I>> &&
-                                std::constructible_from<C, const position_problem&>;
+                                ConstructibleConstraintSet<C>;
+
+/// A set that names the first of its constraints it cannot certify on a box: `undecided(box)`
+/// is that constraint, or nothing when the set certifies the whole box (test: satisfied).
+template <class C, class I>
+concept ExplainingConstraintSet = PositionConstraintSet<C, I> && requires(C& c, const position_box<I>& box) {
+    { c.undecided(box) } -> std::same_as<std::optional<boundary_reason>>;
+};
+
+/// Which constraint of `set` is not certified on `box` (boundary_reason::constraint when the
+/// set does not say which), or nothing when the set certifies all of `box`. One evaluation.
+template <class I, class C>
+std::optional<boundary_reason> undecided_constraint(C& set, const position_box<I>& box) {
+    if constexpr (ExplainingConstraintSet<C, I>)
+        return set.undecided(box);
+    else if (set.test(box) == verdict::satisfied)
+        return std::nullopt;
+    else
+        return boundary_reason::constraint;
+}
 
 }  // namespace certipose

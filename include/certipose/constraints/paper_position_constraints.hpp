@@ -18,6 +18,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <tuple>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -94,32 +97,14 @@ public:
 
     /// satisfied: every position of the box meets constraints 1–4 for every point of the facet;
     /// violated: none does; otherwise undecided.
-    verdict test(const position_box<I>& b) const {
-        if (is_empty(b)) return verdict::violated;
-        const rounding_guard<I> rounding;
-        const std::array<I, 3> pv1{b[0] - f_.v[0].x(), b[1] - f_.v[0].y(), b[2] - f_.v[0].z()};
-        const I back = pv1[0] * enc_.N[0] + pv1[1] * enc_.N[1] + pv1[2] * enc_.N[2];
-        const std::array<I, 3> pc{b[0] - enc_.c[0], b[1] - enc_.c[1], b[2] - enc_.c[2]};
-        const I pc_dot_n = pc[0] * enc_.N[0] + pc[1] * enc_.N[1] + pc[2] * enc_.N[2];
-        const I pc_norm2 = sqr(pc[0]) + sqr(pc[1]) + sqr(pc[2]);
-        const I view = pc_dot_n - enc_.sin_view_norm * sqrt(pc_norm2);
-        std::array<I, 3> d2;
-        for (int i = 0; i < 3; ++i)
-            d2[i] = sqr(b[0] - f_.v[i].x()) + sqr(b[1] - f_.v[i].y()) + sqr(b[2] - f_.v[i].z());
+    verdict test(const position_box<I>& b) const { return assess(b).v; }
 
-        // Violated everywhere: one constraint is certainly false on the whole box.
-        if (!(upper(back) > 0.0) || upper(view) < 0.0) return verdict::violated;
-        for (const I& d : d2)
-            if (lower(d) > enc_.dmax2_hi || upper(d) < enc_.dmin2_lo) return verdict::violated;
-        if (upper(pc_norm2) < enc_.dmin2_lo) return verdict::violated;
-
-        // Satisfied everywhere: each constraint certainly true on the whole box.
-        if (!(lower(back) > 0.0) || !(lower(view) >= 0.0)) return verdict::undecided;
-        for (const I& d : d2)
-            if (!(upper(d) <= enc_.dmax2_lo)) return verdict::undecided;
-        const double near = box_triangle_distance_lower(b, f_.v, f_.normal);
-        if (!(near > 0.0) || !(near >= range_.min)) return verdict::undecided;  // C_f and d_min
-        return verdict::satisfied;
+    /// The first constraint that cannot be certified on `b`; nothing when `test` is satisfied.
+    /// (A box the test calls violated gives boundary_reason::constraint.)
+    std::optional<boundary_reason> undecided(const position_box<I>& b) const {
+        const outcome o = assess(b);
+        if (o.v == verdict::satisfied) return std::nullopt;
+        return o.why;
     }
 
     /// The paper's initial search space (Algorithm 3 line 4): the facet's bounding box grown by
@@ -139,6 +124,43 @@ public:
     distance_range range() const noexcept { return range_; }
 
 private:
+    struct outcome {
+        verdict v;
+        boundary_reason why;  // meaningful when v is undecided
+    };
+
+    outcome assess(const position_box<I>& b) const {
+        constexpr auto undecided_by = [](boundary_reason r) { return outcome{verdict::undecided, r}; };
+        if (is_empty(b)) return {verdict::violated, boundary_reason::constraint};
+        const rounding_guard<I> rounding;
+        const std::array<I, 3> pv1{b[0] - f_.v[0].x(), b[1] - f_.v[0].y(), b[2] - f_.v[0].z()};
+        const I back = pv1[0] * enc_.N[0] + pv1[1] * enc_.N[1] + pv1[2] * enc_.N[2];
+        const std::array<I, 3> pc{b[0] - enc_.c[0], b[1] - enc_.c[1], b[2] - enc_.c[2]};
+        const I pc_dot_n = pc[0] * enc_.N[0] + pc[1] * enc_.N[1] + pc[2] * enc_.N[2];
+        const I pc_norm2 = sqr(pc[0]) + sqr(pc[1]) + sqr(pc[2]);
+        const I view = pc_dot_n - enc_.sin_view_norm * sqrt(pc_norm2);
+        std::array<I, 3> d2;
+        for (int i = 0; i < 3; ++i)
+            d2[i] = sqr(b[0] - f_.v[i].x()) + sqr(b[1] - f_.v[i].y()) + sqr(b[2] - f_.v[i].z());
+
+        // Violated everywhere: one constraint is certainly false on the whole box.
+        constexpr outcome violated{verdict::violated, boundary_reason::constraint};
+        if (!(upper(back) > 0.0) || upper(view) < 0.0) return violated;
+        for (const I& d : d2)
+            if (lower(d) > enc_.dmax2_hi || upper(d) < enc_.dmin2_lo) return violated;
+        if (upper(pc_norm2) < enc_.dmin2_lo) return violated;
+
+        // Satisfied everywhere: each constraint certainly true on the whole box.
+        if (!(lower(back) > 0.0)) return undecided_by(boundary_reason::backface);
+        if (!(lower(view) >= 0.0)) return undecided_by(boundary_reason::view_angle);
+        for (const I& d : d2)
+            if (!(upper(d) <= enc_.dmax2_lo)) return undecided_by(boundary_reason::distance);
+        const double near = box_triangle_distance_lower(b, f_.v, f_.normal);
+        if (!(near > 0.0)) return undecided_by(boundary_reason::facet_contact);  // C_f
+        if (!(near >= range_.min)) return undecided_by(boundary_reason::distance);
+        return {verdict::satisfied, boundary_reason::constraint};
+    }
+
     // Runs before any member is built from the problem, so bad input fails with its own name.
     static const position_problem& validated(const position_problem& problem) {
         problem.task.validate();
@@ -157,11 +179,27 @@ private:
 };
 
 /// Several constraint sets at once (all must hold): contracts with each in turn; satisfied when
-/// all are, violated when one is. Each is built from the same position_problem.
-template <class... Sets>
+/// all are, violated when one is. Each is built from the same position_problem and its own
+/// parameters: `all_of<A, B>::parameters` holds A's and B's (`no_parameters` for a set that
+/// declares none), in order, e.g. `{{}, keep_in_sphere<I>::parameters{.centre = c, .radius = r}}`.
+template <ConstructibleConstraintSet... Sets>
 class all_of {
 public:
-    explicit all_of(const position_problem& problem) : sets_(Sets(problem)...) {}
+    /// The member sets' parameters, in order (a struct rather than a std::tuple: braced lists
+    /// like `{{}, sphere}` convert to it without ambiguity).
+    struct parameters {
+        std::tuple<constraint_parameters_t<Sets>...> each{};
+
+        parameters() = default;
+        parameters(constraint_parameters_t<Sets>... p) : each(std::move(p)...) {}  // NOLINT(implicit)
+
+        template <std::size_t K>
+        const auto& get() const noexcept { return std::get<K>(each); }
+        friend bool operator==(const parameters&, const parameters&) = default;
+    };
+
+    explicit all_of(const position_problem& problem, const parameters& p = {})
+        : all_of(problem, p, std::index_sequence_for<Sets...>{}) {}
 
     template <class Box>
     void contract(Box& box) {
@@ -182,6 +220,14 @@ public:
             sets_);
         return r;
     }
+    /// The reason of the first member set that does not certify `box`; nothing if all do.
+    template <class Box>
+    std::optional<boundary_reason> undecided(const Box& box) {
+        using I = typename Box::interval_type;
+        std::optional<boundary_reason> r;
+        std::apply([&](auto&... s) { ((r ? void() : void(r = undecided_constraint<I>(s, box))), ...); }, sets_);
+        return r;
+    }
     /// The first set's initial box (the paper's set knows the facet), contracted by all sets.
     template <class Box = decltype(std::declval<std::tuple_element_t<0, std::tuple<Sets...>>&>().initial_box())>
     Box initial_box() {
@@ -193,6 +239,10 @@ public:
     auto& get() noexcept { return std::get<K>(sets_); }
 
 private:
+    template <std::size_t... Is>
+    all_of(const position_problem& problem, const parameters& p, std::index_sequence<Is...>)
+        : sets_(make_constraint_set<Sets>(problem, std::get<Is>(p.each))...) {}
+
     std::tuple<Sets...> sets_;
 };
 

@@ -359,14 +359,14 @@ bool is_zero(const I& g) {
 
 struct add {
     template <class I, class A, class B>
-    static I fwd(const A& a, const B& b) {
+    CERTIPOSE_DETAIL_INLINE static I fwd(const A& a, const B& b) {
         if constexpr (std::is_arithmetic_v<A> && std::is_arithmetic_v<B>) return I(a) + b;
         else return a + b;
     }
     template <class I, class B>
-    static I bwd_left(const I& y, const I&, const B& b) { return y - b; }
+    CERTIPOSE_DETAIL_INLINE static I bwd_left(const I& y, const I&, const B& b) { return y - b; }
     template <class I, class A>
-    static I bwd_right(const I& y, const A& a, const I&) { return y - a; }
+    CERTIPOSE_DETAIL_INLINE static I bwd_right(const I& y, const A& a, const I&) { return y - a; }
     template <class B>
     static bool defined(const B&) { return true; }
     template <class I>
@@ -377,14 +377,14 @@ struct add {
 
 struct sub {
     template <class I, class A, class B>
-    static I fwd(const A& a, const B& b) {
+    CERTIPOSE_DETAIL_INLINE static I fwd(const A& a, const B& b) {
         if constexpr (std::is_arithmetic_v<A> && std::is_arithmetic_v<B>) return I(a) - b;
         else return a - b;
     }
     template <class I, class B>
-    static I bwd_left(const I& y, const I&, const B& b) { return y + b; }
+    CERTIPOSE_DETAIL_INLINE static I bwd_left(const I& y, const I&, const B& b) { return y + b; }
     template <class I, class A>
-    static I bwd_right(const I& y, const A& a, const I&) { return a - y; }
+    CERTIPOSE_DETAIL_INLINE static I bwd_right(const I& y, const A& a, const I&) { return a - y; }
     template <class B>
     static bool defined(const B&) { return true; }
     template <class I>
@@ -395,16 +395,16 @@ struct sub {
 
 struct mul {
     template <class I, class A, class B>
-    static I fwd(const A& a, const B& b) {
+    CERTIPOSE_DETAIL_INLINE static I fwd(const A& a, const B& b) {
         if constexpr (std::is_arithmetic_v<A> && std::is_arithmetic_v<B>) return I(a) * b;
         else return a * b;
     }
     template <class I, class B>
-    static I bwd_left(const I& y, const I& a, const B& b) {
+    CERTIPOSE_DETAIL_INLINE static I bwd_left(const I& y, const I& a, const B& b) {
         return expr::detail::div_projection(a, y, b);
     }
     template <class I, class A>
-    static I bwd_right(const I& y, const A& a, const I& b) {
+    CERTIPOSE_DETAIL_INLINE static I bwd_right(const I& y, const A& a, const I& b) {
         return expr::detail::div_projection(b, y, a);
     }
     template <class B>
@@ -419,7 +419,7 @@ struct mul {
 
 struct div {
     template <class I, class A, class B>
-    static I fwd(const A& a, const B& b) {
+    CERTIPOSE_DETAIL_INLINE static I fwd(const A& a, const B& b) {
         if constexpr (std::is_arithmetic_v<B>) {
             if (b == 0.0) return interval_traits<I>::empty();  // x / 0 is defined nowhere
             if constexpr (std::is_arithmetic_v<A>) return I(a) / b;
@@ -430,10 +430,10 @@ struct div {
     }
     // x = a / b  ⇒  a = x·b (wherever x is defined).
     template <class I, class B>
-    static I bwd_left(const I& y, const I&, const B& b) { return y * b; }
+    CERTIPOSE_DETAIL_INLINE static I bwd_left(const I& y, const I&, const B& b) { return y * b; }
     // x = a / b  ⇒  b = a / x when x ≠ 0, any b when x = 0 = a.
     template <class I, class A>
-    static I bwd_right(const I& y, const A& a, const I& b) {
+    CERTIPOSE_DETAIL_INLINE static I bwd_right(const I& y, const A& a, const I& b) {
         return expr::detail::div_projection(b, expr::detail::as_interval<I>(a), y);
     }
     template <class B>
@@ -629,4 +629,13 @@ using expr::Expression;
 using expr::param;
 using expr::set_param;
 using expr::var;
+// The functions too, so that `certipose::sqr(x - 1.0)` works as well as unqualified `sqr(x - 1.0)`
+// (found by ADL). They are constrained to expressions, so they overload the interval backends'
+// functions of the same name without ambiguity.
+using expr::abs;
+using expr::cos;
+using expr::pow;
+using expr::sin;
+using expr::sqr;
+using expr::sqrt;
 }  // namespace certipose

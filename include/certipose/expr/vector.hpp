@@ -71,6 +71,10 @@ auto norm(const vec3<X, Y, Z>& u) {
 }  // namespace certipose::expr
 
 namespace certipose {
+using expr::cross;
+using expr::dot;
+using expr::norm;
+using expr::sqr_norm;
 using expr::vec;
 using expr::vec3;
 }  // namespace certipose

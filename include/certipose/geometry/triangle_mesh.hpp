@@ -13,12 +13,11 @@
 // Boost.Multiprecision integers.
 #pragma once
 
+#include <certipose/detail/config.hpp>
 #include <certipose/detail/format.hpp>
 #include <certipose/error.hpp>
 
 #include <Eigen/Geometry>
-#include <boost/multiprecision/cpp_int.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -61,37 +60,9 @@ inline std::string format(const Eigen::Vector3d& p) {
     return "(" + format(p.x()) + ", " + format(p.y()) + ", " + format(p.z()) + ")";
 }
 
-/// Exact test of (b − a) × (c − a) = 0 for double coordinates. Each double is m·2^e with an
-/// integer m of at most 53 bits, so after scaling all nine coordinates by a common power of two
-/// they are integers and the three 2×2 minors are evaluated exactly in cpp_int.
-inline bool exactly_collinear_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
-    using boost::multiprecision::cpp_int;
-    const std::array<const Eigen::Vector3d*, 3> pts{&a, &b, &c};
-    std::array<std::int64_t, 9> mant{};
-    std::array<int, 9> expo{};
-    int emin = std::numeric_limits<int>::max();
-    for (int i = 0; i < 9; ++i) {
-        const double x = (*pts[i / 3])[i % 3];
-        int e = 0;
-        const double m = std::frexp(x, &e);  // x = m·2^e, 0.5 <= |m| < 1 (or m = 0)
-        mant[i] = static_cast<std::int64_t>(std::ldexp(m, 53));  // exact: 53-bit integer
-        expo[i] = e - 53;
-        if (m != 0.0) emin = std::min(emin, expo[i]);
-    }
-    if (emin == std::numeric_limits<int>::max()) return true;  // all three points at 0
-    std::array<cpp_int, 9> q;
-    for (int i = 0; i < 9; ++i) {
-        q[i] = mant[i];
-        if (mant[i] != 0) q[i] <<= static_cast<unsigned>(expo[i] - emin);
-    }
-    const auto minor = [&](int i, int j) {  // component (i, j) minor of (b − a) × (c − a)
-        const cpp_int bi = q[3 + i] - q[i], bj = q[3 + j] - q[j];
-        const cpp_int ci = q[6 + i] - q[i], cj = q[6 + j] - q[j];
-        return cpp_int(bi * cj - bj * ci);
-    };
-    return minor(0, 1) == 0 && minor(1, 2) == 0 && minor(2, 0) == 0;
-}
+/// Exact test of (b − a) × (c − a) = 0 for double coordinates (Boost.Multiprecision integers;
+/// defined at the end of this header, or in certipose::precompiled: detail/config.hpp).
+bool exactly_collinear_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 /// Filtered exact collinearity: one component of the double cross product whose magnitude
 /// exceeds a bound on its rounding error proves non-collinearity; otherwise decide exactly.
@@ -463,3 +434,45 @@ inline triangle_mesh rescaled_to_diagonal(const triangle_mesh& m, double diagona
 }
 
 }  // namespace certipose
+
+// The exact fallback of the collinearity test, with Boost.Multiprecision (a few seconds of
+// parsing per translation unit, which certipose::precompiled spares its users).
+#if CERTIPOSE_DETAIL_WITH_DEFINITIONS
+#include <boost/multiprecision/cpp_int.hpp>
+
+namespace certipose::detail::mesh {
+
+/// Exact test of (b − a) × (c − a) = 0 for double coordinates. Each double is m·2^e with an
+/// integer m of at most 53 bits, so after scaling all nine coordinates by a common power of two
+/// they are integers and the three 2×2 minors are evaluated exactly in cpp_int.
+CERTIPOSE_DECL bool exactly_collinear_exact(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+    using boost::multiprecision::cpp_int;
+    const std::array<const Eigen::Vector3d*, 3> pts{&a, &b, &c};
+    std::array<std::int64_t, 9> mant{};
+    std::array<int, 9> expo{};
+    int emin = std::numeric_limits<int>::max();
+    for (int i = 0; i < 9; ++i) {
+        const double x = (*pts[i / 3])[i % 3];
+        int e = 0;
+        const double m = std::frexp(x, &e);  // x = m·2^e, 0.5 <= |m| < 1 (or m = 0)
+        mant[i] = static_cast<std::int64_t>(std::ldexp(m, 53));  // exact: 53-bit integer
+        expo[i] = e - 53;
+        if (m != 0.0) emin = std::min(emin, expo[i]);
+    }
+    if (emin == std::numeric_limits<int>::max()) return true;  // all three points at 0
+    std::array<cpp_int, 9> q;
+    for (int i = 0; i < 9; ++i) {
+        q[i] = mant[i];
+        if (mant[i] != 0) q[i] <<= static_cast<unsigned>(expo[i] - emin);
+    }
+    const auto minor = [&](int i, int j) {  // component (i, j) minor of (b − a) × (c − a)
+        const cpp_int bi = q[3 + i] - q[i], bj = q[3 + j] - q[j];
+        const cpp_int ci = q[6 + i] - q[i], cj = q[6 + j] - q[j];
+        return cpp_int(bi * cj - bj * ci);
+    };
+    return minor(0, 1) == 0 && minor(1, 2) == 0 && minor(2, 0) == 0;
+}
+
+}  // namespace certipose::detail::mesh
+#endif  // CERTIPOSE_DETAIL_WITH_DEFINITIONS

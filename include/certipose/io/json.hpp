@@ -20,6 +20,7 @@
 
 #include <certipose/detail/format.hpp>
 #include <certipose/camera.hpp>
+#include <certipose/camera/calibrated_camera.hpp>
 #include <certipose/error.hpp>
 #include <certipose/interval/detail/fenv.hpp>
 #include <certipose/io/result_document.hpp>
@@ -53,10 +54,25 @@ namespace certipose {
 /// A camera read from JSON: the model is chosen by the file ("model": "thin_lens" | "pinhole").
 using any_camera = std::variant<thin_lens_camera, pinhole_camera>;
 
+/// "thin_lens" or "pinhole": the input JSON's name of the model.
+inline const char* model_name(const any_camera& camera) noexcept {
+    return std::holds_alternative<thin_lens_camera>(camera) ? "thin_lens" : "pinhole";
+}
+
+/// The camera as the one type the solver reads (camera/calibrated_camera.hpp), whatever its
+/// model: a program that accepts every model instantiates the pipeline once,
+/// `pose_solver<with_camera<calibrated_camera>>`.
+inline calibrated_camera calibrated(const any_camera& camera) {
+    return std::visit([&](const auto& c) { return calibrated_camera(c, model_name(camera)); }, camera);
+}
+
 /// The camera/task input JSON of DESIGN.md §6.
 struct camera_task {
     any_camera camera;
     inspection_task task;
+
+    /// `certipose::calibrated(camera)`.
+    calibrated_camera calibrated() const { return certipose::calibrated(camera); }
 };
 
 namespace detail::json_io {
@@ -326,6 +342,12 @@ inline void check_bounds(const bounds_3d& b, const std::string& path) {
                                        detail::format_double(b[i][1]));
 }
 
+inline std::optional<boundary_reason> boundary_reason_from_string(std::string_view s) {
+    for (std::size_t r = 0; r < boundary_reason_count; ++r)
+        if (s == to_string(static_cast<boundary_reason>(r))) return static_cast<boundary_reason>(r);
+    return std::nullopt;
+}
+
 inline std::optional<termination> termination_from_string(std::string_view s) {
     for (termination t : {termination::completed, termination::box_budget, termination::deadline,
                           termination::cancelled})
@@ -524,6 +546,10 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
         box["class"] = to_string(b.cls);
         box["position"] = bounds(b.position, child(path, "position"));
         box["orientation"] = bounds(b.orientation, child(path, "orientation"));
+        // Extra fields: why a BOUNDARY box is undecided; that a VALID box's occlusion was not
+        // checked (no_occlusion), so that a tool reading boxes alone cannot miss it.
+        if (b.reason) box["undecided"] = std::string(to_string(*b.reason));
+        if (b.cls == box_class::valid && !d.stats.occlusion_checked) box["occlusion"] = "unchecked";
         boxes.push_back(std::move(box));
     }
 
@@ -542,6 +568,11 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     stats["seconds_position"] = finite(s.seconds_position, "stats.seconds_position");
     stats["seconds_orientation"] = finite(s.seconds_orientation, "stats.seconds_orientation");
     stats["termination"] = to_string(s.reason);
+    ordered_json reasons;
+    for (std::size_t r = 0; r < boundary_reason_count; ++r)
+        reasons[std::string(to_string(static_cast<boundary_reason>(r)))] = s.boundary_reasons[r];
+    stats["boundary_reasons"] = std::move(reasons);
+    stats["occlusion_checked"] = s.occlusion_checked;
 
     ordered_json j;
     j["facet"] = std::move(facet);
@@ -650,6 +681,11 @@ inline result_document result_from_json(const nlohmann::json& j) {
                                         child(path, "orientation"));
         check_bounds(r.position, child(path, "position"));
         check_bounds(r.orientation, child(path, "orientation"));
+        if (const json* u = find(b, "undecided")) {
+            const std::string name = as_string(*u, child(path, "undecided"), "a string");
+            r.reason = boundary_reason_from_string(name);
+            if (!r.reason) fail(child(path, "undecided"), "unknown reason \"" + name + "\"");
+        }
         d.boxes.push_back(r);
     }
 
@@ -676,6 +712,17 @@ inline result_document result_from_json(const nlohmann::json& j) {
             fail("stats.termination", "unknown termination \"" + name +
                                           "\" (expected completed, box_budget, deadline or cancelled)");
         s.reason = *reason;
+    }
+    if (const json* reasons = find(stats, "boundary_reasons")) {
+        require_object(*reasons, "stats.boundary_reasons");
+        for (std::size_t r = 0; r < boundary_reason_count; ++r) {
+            const std::string_view key = to_string(static_cast<boundary_reason>(r));
+            if (const json* v = find(*reasons, key)) s.boundary_reasons[r] = as_count(*v, child("stats.boundary_reasons", key));
+        }
+    }
+    if (const json* c = find(stats, "occlusion_checked")) {
+        if (!c->is_boolean()) fail("stats.occlusion_checked", "expected true or false, got " + describe(*c));
+        s.occlusion_checked = c->get<bool>();
     }
     return d;
 }

@@ -12,6 +12,38 @@
 // certipose::cgal. The writer, write_mesh_off, is in certipose/io/write_mesh.hpp (no CGAL).
 #pragma once
 
+#include <certipose/detail/config.hpp>
+#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/io/write_mesh.hpp>
+
+#include <filesystem>
+#include <optional>
+
+namespace certipose {
+
+/// Options of read_mesh.
+struct read_options {
+    /// Unset: no welding. Set: merge vertices closer than this, in FILE units (before `scale`);
+    /// see `welded`. Throws invalid_argument("weld_tolerance") if negative or non-finite.
+    std::optional<double> weld_tolerance{};
+    /// Multiplies every coordinate after reading (e.g. 0.0254 for inches → metres).
+    /// Throws invalid_argument("scale") unless finite and > 0.
+    double scale = 1.0;
+};
+
+/// Reads a triangle mesh from `path` (.off, .obj, .ply or .stl, any letter case).
+/// Throws certipose::io_error(path) when the extension is unknown, the file is missing or
+/// unreadable, CGAL cannot parse it, or it holds no face; certipose::mesh_error (message
+/// prefixed with the path) when a polygon is not a triangle or the mesh fails triangle_mesh's
+/// validation or welding; certipose::invalid_argument for bad options. Faces keep file order.
+triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& opt = {});
+
+}  // namespace certipose
+
+// The definition (CGAL's readers), unless the certipose::precompiled library has it
+// (detail/config.hpp).
+#if CERTIPOSE_DETAIL_WITH_DEFINITIONS
+
 #include "certipose/interval/detail/fenv.hpp"
 
 #include <certipose/error.hpp>
@@ -39,16 +71,6 @@
 #include <vector>
 
 namespace certipose {
-
-/// Options of read_mesh.
-struct read_options {
-    /// Unset: no welding. Set: merge vertices closer than this, in FILE units (before `scale`);
-    /// see `welded`. Throws invalid_argument("weld_tolerance") if negative or non-finite.
-    std::optional<double> weld_tolerance{};
-    /// Multiplies every coordinate after reading (e.g. 0.0254 for inches → metres).
-    /// Throws invalid_argument("scale") unless finite and > 0.
-    double scale = 1.0;
-};
 
 namespace detail::io {
 
@@ -83,12 +105,7 @@ inline std::string lowercase_extension(const std::filesystem::path& p) {
 
 }  // namespace detail::io
 
-/// Reads a triangle mesh from `path` (.off, .obj, .ply or .stl, any letter case).
-/// Throws certipose::io_error(path) when the extension is unknown, the file is missing or
-/// unreadable, CGAL cannot parse it, or it holds no face; certipose::mesh_error (message
-/// prefixed with the path) when a polygon is not a triangle or the mesh fails triangle_mesh's
-/// validation or welding; certipose::invalid_argument for bad options. Faces keep file order.
-inline triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& opt = {}) {
+CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& opt) {
     // Decimal parsing and scaling must round to nearest even when the caller holds an interval
     // rounding_guard (upward, "0.3" would parse to the next double up).
     const detail::round_to_nearest_scope nearest{};
@@ -174,3 +191,5 @@ inline triangle_mesh read_mesh(const std::filesystem::path& path, const read_opt
 }
 
 }  // namespace certipose
+
+#endif  // CERTIPOSE_DETAIL_WITH_DEFINITIONS

@@ -31,6 +31,8 @@ struct box_record {
     box_class cls = box_class::valid;
     bounds_3d position{};     ///< [x], [y], [z], metres
     bounds_3d orientation{};  ///< [φ], [γ], [β], radians (ZXZ, DESIGN.md §2)
+    /// BOUNDARY boxes: which constraint (or budget) left it undecided (JSON "undecided").
+    std::optional<boundary_reason> reason{};
     friend bool operator==(const box_record&, const box_record&) = default;
 };
 
@@ -77,7 +79,8 @@ bounds_3d to_bounds(const interval_box<I, 3>& b) {
 
 template <Interval I>
 box_record to_record(const classified_box<I>& b) {
-    return {b.cls, to_bounds(b.box.position), to_bounds(b.box.orientation)};
+    return {b.cls, to_bounds(b.box.position), to_bounds(b.box.orientation),
+            b.cls == box_class::boundary ? std::optional<boundary_reason>(b.reason) : std::nullopt};
 }
 
 /// The document of one solver run. `mesh` must be the mesh that was solved (the facet is

@@ -21,11 +21,17 @@
 // A box touching or crossing f's plane is never VISIBLE (some points see f edge-on or from
 // behind). docs/occlusion.md has the details and the measured speed.
 //
+// The class is declared in occlusion/aabb_occlusion.hpp (no CGAL); this header defines it,
+// unless CERTIPOSE_PRECOMPILED says the certipose::precompiled library does (detail/config.hpp).
 // Built once per scene: validates every mesh as a closed solid (detail/cgal_scene.hpp), copies
 // the triangles and builds the tree. `classify` is const and thread-safe: one object may be
 // shared by many threads (copies share the immutable scene). It holds round-to-nearest for its
 // duration, so callers may hold an interval rounding guard.
 #pragma once
+
+#include <certipose/occlusion/aabb_occlusion.hpp>
+
+#if CERTIPOSE_DETAIL_WITH_DEFINITIONS
 
 #include <certipose/error.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
@@ -101,12 +107,6 @@ struct aabb_scene {
     mutable std::atomic<std::uint64_t> exact_clips{0};
 };
 
-/// Counters of one classification (tests and benchmarks read them through `explain`).
-struct aabb_trace {
-    std::size_t triangles_tested = 0;
-    std::size_t exact_clips = 0;
-    std::size_t blocker = static_cast<std::size_t>(-1);  ///< a triangle that blocks, if any
-};
 
 /// Signs of the line a → b against the three directed edges of triangle w (orient3 of a, b
 /// and each edge). The line passes through the closed triangle iff the signs do not differ
@@ -571,152 +571,130 @@ struct hull_traversal {
     }
 };
 
+/// The part, then each occluder.
+inline std::vector<const triangle_mesh*> scene_meshes(const triangle_mesh& part,
+                                                     std::span<const triangle_mesh> occluders) {
+    std::vector<const triangle_mesh*> all{&part};
+    for (const auto& o : occluders) all.push_back(&o);
+    return all;
+}
+
 }  // namespace detail::occ
 
-/// Fast certified occlusion policy (see the header comment). Copies are cheap and share the
-/// scene; every member is const and thread-safe.
-class aabb_occlusion {
-public:
-    /// What `explain` reports about one classification.
-    using trace = detail::occ::aabb_trace;
 
-    /// Validates `part` as a closed solid and builds the AABB tree; throws mesh_error.
-    explicit aabb_occlusion(const triangle_mesh& part) : aabb_occlusion(part, {}) {}
 
-    /// Part plus external occluders (each a closed solid; they may touch the part but must not
-    /// enclose the facet). Facet indices refer to `part`.
-    aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders) {
-        auto s = std::make_shared<detail::occ::aabb_scene>();
-        detail::occ::validate_solid(part, "aabb_occlusion: part");
-        for (std::size_t i = 0; i < occluders.size(); ++i)
-            detail::occ::validate_solid(occluders[i], "aabb_occlusion: occluder " + std::to_string(i));
-        s->part_faces = part.num_faces();
-        std::uint32_t offset = 0;
-        for (const triangle_mesh* m : meshes(part, occluders)) {
-            detail::occ::append_triangles(s->tris, *m, offset);
-            offset += static_cast<std::uint32_t>(m->num_vertices());
+CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part) : aabb_occlusion(part, {}) {}
+
+CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders) {
+    auto s = std::make_shared<detail::occ::aabb_scene>();
+    detail::occ::validate_solid(part, "aabb_occlusion: part");
+    for (std::size_t i = 0; i < occluders.size(); ++i)
+        detail::occ::validate_solid(occluders[i], "aabb_occlusion: occluder " + std::to_string(i));
+    s->part_faces = part.num_faces();
+    std::uint32_t offset = 0;
+    for (const triangle_mesh* m : detail::occ::scene_meshes(part, occluders)) {
+        detail::occ::append_triangles(s->tris, *m, offset);
+        offset += static_cast<std::uint32_t>(m->num_vertices());
+    }
+    using P = detail::occ::epick::Point_3;
+    for (const auto& t : s->tris)
+        s->cgal_tris.emplace_back(P(t.v[0][0], t.v[0][1], t.v[0][2]),
+                                  P(t.v[1][0], t.v[1][1], t.v[1][2]),
+                                  P(t.v[2][0], t.v[2][1], t.v[2][2]));
+    s->tree.rebuild(s->cgal_tris.cbegin(), s->cgal_tris.cend());  // built now: const queries
+    scene_ = std::move(s);
+}
+
+CERTIPOSE_DECL visibility aabb_occlusion::classify(const Eigen::AlignedBox3d& box, std::size_t facet) const {
+    trace t;
+    return explain(box, facet, t);
+}
+
+CERTIPOSE_DECL visibility aabb_occlusion::explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info) const {
+    using namespace detail::occ;
+    info = trace{};
+    const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    const detail::round_to_nearest_scope nearest;  // the error bounds assume it
+    const scene_triangle& F = scene_->tris[facet];
+    const pt lo{b.min().x(), b.min().y(), b.min().z()};
+    const pt hi{b.max().x(), b.max().y(), b.max().z()};
+
+    // Which side of the facet plane is each corner on (exact)?
+    const hplane fp = facet_plane(F.v);
+    int behind = 0, front = 0;
+    for (int k = 0; k < 8; ++k) {
+        const pt c{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
+        const int s = side(fp, c);
+        behind += s > 0, front += s < 0;
+    }
+    if (behind == 8) return visibility::occluded;  // facing away: inside the part
+    if (front == 0) {
+        // Behind or in the facet plane. An in-plane position outside the facet sees its
+        // interior only across its boundary, i.e. across a neighbour triangle (closed part).
+        const epick::Iso_cuboid_3 cub(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+        return CGAL::do_intersect(scene_->cgal_tris[facet], cub) ? visibility::partial : visibility::occluded;
+    }
+    if (front < 8) return visibility::partial;  // edge-on or behind for some positions
+
+    sight_hull H;
+    build_sight_hull(lo, hi, F.v, H);
+    hull_traversal tr{H, *scene_, facet, F.id, info};
+    scene_->tree.traversal(H, tr);
+    tr.settle();
+    if (info.exact_clips) scene_->exact_clips.fetch_add(info.exact_clips, std::memory_order_relaxed);
+    if (!tr.blocked) return visibility::visible;
+    const scene_triangle& first = scene_->tris[info.blocker];
+    if (blocks_every_sight_line(H, first)) return visibility::occluded;
+    // The wall certificates below walk the tree again; most boxes with a blocker still
+    // have a free sight line, which rules every certificate out at the cost of a few
+    // segment queries.
+    if (some_sight_line_free(*scene_, facet, lo, hi)) return visibility::partial;
+    if (planar_wall_blocks(H, *scene_, facet, first)) return visibility::occluded;
+    // Try the planes of the other blocking triangles (each distinct plane once).
+    std::vector<std::size_t> blockers;
+    hull_traversal all{H, *scene_, facet, F.id, info};
+    all.collect = &blockers;
+    scene_->tree.traversal(H, all);
+    const auto coplanar = [&](const scene_triangle& u, const scene_triangle& t) {
+        return orient3(u.v[0], u.v[1], u.v[2], t.v[0]) == 0 && orient3(u.v[0], u.v[1], u.v[2], t.v[1]) == 0 &&
+               orient3(u.v[0], u.v[1], u.v[2], t.v[2]) == 0;
+    };
+    std::vector<std::size_t> tried{info.blocker}, in_plane;
+    for (std::size_t b : blockers) {
+        const scene_triangle& T = scene_->tris[b];
+        if (tried.size() > max_wall_planes) break;
+        const int across = wall_plane_qualifies(H, T);
+        if (across < 0) continue;
+        bool seen = false;
+        for (std::size_t t : tried) seen = seen || coplanar(scene_->tris[t], T);
+        if (seen) continue;
+        tried.push_back(b);
+        // Cheap necessary condition first: each corner's sight line to the facet vertex
+        // across the plane crosses a collected triangle of that plane (the only triangles
+        // of the plane that can meet H, unless the collection was cut short).
+        in_plane.clear();
+        for (std::size_t o : blockers)
+            if (coplanar(T, scene_->tris[o])) in_plane.push_back(o);
+        bool all_cross = true;
+        for (int c = 0; c < 8 && all_cross; ++c) {
+            bool crosses = false;
+            for (std::size_t o : in_plane)
+                if (line_meets_closed_triangle(H.pts[c], H.pts[across], scene_->tris[o].v)) {
+                    crosses = true;
+                    break;
+                }
+            all_cross = crosses;
         }
-        using P = detail::occ::epick::Point_3;
-        for (const auto& t : s->tris)
-            s->cgal_tris.emplace_back(P(t.v[0][0], t.v[0][1], t.v[0][2]),
-                                      P(t.v[1][0], t.v[1][1], t.v[1][2]),
-                                      P(t.v[2][0], t.v[2][1], t.v[2][2]));
-        s->tree.rebuild(s->cgal_tris.cbegin(), s->cgal_tris.cend());  // built now: const queries
-        scene_ = std::move(s);
+        if (all_cross && planar_wall_blocks(H, *scene_, facet, T)) return visibility::occluded;
     }
+    return visibility::partial;
+}
 
-    /// Classifies every camera position of `box` against facet `facet` of the part. Throws
-    /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box).
-    template <Interval I>
-    visibility classify(const position_box<I>& box, std::size_t facet) const {
-        return classify(detail::occ::box_bounds(box, "aabb_occlusion"), facet);
-    }
-
-    /// The same on a box given by double bounds.
-    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet) const {
-        trace t;
-        return explain(box, facet, t);
-    }
-
-    /// `classify`, also reporting how the answer was reached (for tests and benchmarks).
-    visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info) const {
-        using namespace detail::occ;
-        info = trace{};
-        const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
-        if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
-        const detail::round_to_nearest_scope nearest;  // the error bounds assume it
-        const scene_triangle& F = scene_->tris[facet];
-        const pt lo{b.min().x(), b.min().y(), b.min().z()};
-        const pt hi{b.max().x(), b.max().y(), b.max().z()};
-
-        // Which side of the facet plane is each corner on (exact)?
-        const hplane fp = facet_plane(F.v);
-        int behind = 0, front = 0;
-        for (int k = 0; k < 8; ++k) {
-            const pt c{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
-            const int s = side(fp, c);
-            behind += s > 0, front += s < 0;
-        }
-        if (behind == 8) return visibility::occluded;  // facing away: inside the part
-        if (front == 0) {
-            // Behind or in the facet plane. An in-plane position outside the facet sees its
-            // interior only across its boundary, i.e. across a neighbour triangle (closed part).
-            const epick::Iso_cuboid_3 cub(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-            return CGAL::do_intersect(scene_->cgal_tris[facet], cub) ? visibility::partial : visibility::occluded;
-        }
-        if (front < 8) return visibility::partial;  // edge-on or behind for some positions
-
-        sight_hull H;
-        build_sight_hull(lo, hi, F.v, H);
-        hull_traversal tr{H, *scene_, facet, F.id, info};
-        scene_->tree.traversal(H, tr);
-        tr.settle();
-        if (info.exact_clips) scene_->exact_clips.fetch_add(info.exact_clips, std::memory_order_relaxed);
-        if (!tr.blocked) return visibility::visible;
-        const scene_triangle& first = scene_->tris[info.blocker];
-        if (blocks_every_sight_line(H, first)) return visibility::occluded;
-        // The wall certificates below walk the tree again; most boxes with a blocker still
-        // have a free sight line, which rules every certificate out at the cost of a few
-        // segment queries.
-        if (some_sight_line_free(*scene_, facet, lo, hi)) return visibility::partial;
-        if (planar_wall_blocks(H, *scene_, facet, first)) return visibility::occluded;
-        // Try the planes of the other blocking triangles (each distinct plane once).
-        std::vector<std::size_t> blockers;
-        hull_traversal all{H, *scene_, facet, F.id, info};
-        all.collect = &blockers;
-        scene_->tree.traversal(H, all);
-        const auto coplanar = [&](const scene_triangle& u, const scene_triangle& t) {
-            return orient3(u.v[0], u.v[1], u.v[2], t.v[0]) == 0 && orient3(u.v[0], u.v[1], u.v[2], t.v[1]) == 0 &&
-                   orient3(u.v[0], u.v[1], u.v[2], t.v[2]) == 0;
-        };
-        std::vector<std::size_t> tried{info.blocker}, in_plane;
-        for (std::size_t b : blockers) {
-            const scene_triangle& T = scene_->tris[b];
-            if (tried.size() > max_wall_planes) break;
-            const int across = wall_plane_qualifies(H, T);
-            if (across < 0) continue;
-            bool seen = false;
-            for (std::size_t t : tried) seen = seen || coplanar(scene_->tris[t], T);
-            if (seen) continue;
-            tried.push_back(b);
-            // Cheap necessary condition first: each corner's sight line to the facet vertex
-            // across the plane crosses a collected triangle of that plane (the only triangles
-            // of the plane that can meet H, unless the collection was cut short).
-            in_plane.clear();
-            for (std::size_t o : blockers)
-                if (coplanar(T, scene_->tris[o])) in_plane.push_back(o);
-            bool all_cross = true;
-            for (int c = 0; c < 8 && all_cross; ++c) {
-                bool crosses = false;
-                for (std::size_t o : in_plane)
-                    if (line_meets_closed_triangle(H.pts[c], H.pts[across], scene_->tris[o].v)) {
-                        crosses = true;
-                        break;
-                    }
-                all_cross = crosses;
-            }
-            if (all_cross && planar_wall_blocks(H, *scene_, facet, T)) return visibility::occluded;
-        }
-        return visibility::partial;
-    }
-
-    /// At most this many distinct planes of blocking triangles are tried as walls.
-    static constexpr std::size_t max_wall_planes = 8;
-
-    /// Number of exact rational fallbacks taken so far by all copies (diagnostics).
-    std::uint64_t exact_fallbacks() const noexcept {
-        return scene_->exact_clips.load(std::memory_order_relaxed);
-    }
-
-private:
-    static std::vector<const triangle_mesh*> meshes(const triangle_mesh& part,
-                                                    std::span<const triangle_mesh> occluders) {
-        std::vector<const triangle_mesh*> all{&part};
-        for (const auto& o : occluders) all.push_back(&o);
-        return all;
-    }
-
-    std::shared_ptr<const detail::occ::aabb_scene> scene_;
-};
+CERTIPOSE_DECL std::uint64_t aabb_occlusion::exact_fallbacks() const noexcept {
+    return scene_->exact_clips.load(std::memory_order_relaxed);
+}
 
 }  // namespace certipose
+
+#endif  // CERTIPOSE_DETAIL_WITH_DEFINITIONS

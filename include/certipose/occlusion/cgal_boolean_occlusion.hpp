@@ -23,10 +23,16 @@
 // certified test. Blind spot of any regularized boolean, documented in docs/occlusion.md: a
 // scene face lying exactly in a face of H with all its contact corners at vertices of H.
 //
+// The class is declared in occlusion/boolean_occlusion.hpp (no CGAL); this header defines it,
+// unless CERTIPOSE_PRECOMPILED says the certipose::precompiled library does (detail/config.hpp).
 // Built once per scene: validates every mesh (detail/cgal_scene.hpp) and keeps an exact copy.
 // `classify` is const and thread-safe (CGAL 5.5's lazy exact kernel is thread-safe with
 // CGAL_HAS_THREADS, the default; each call works on its own copies).
 #pragma once
+
+#include <certipose/occlusion/boolean_occlusion.hpp>
+
+#if CERTIPOSE_DETAIL_WITH_DEFINITIONS
 
 #include <certipose/error.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
@@ -66,155 +72,147 @@ struct boolean_scene {
     std::vector<Eigen::AlignedBox3d> bboxes;   ///< double bounding boxes, for quick rejection
     std::vector<std::array<pt, 3>> facets;     ///< part facets
 };
+using exact_kernel = boolean_scene::kernel;
+using exact_mesh = boolean_scene::mesh;
+
+template <class Mesh, class Point>
+bool has_vertex(const Mesh& m, const Point& p) {
+    for (auto v : m.vertices())
+        if (m.point(v) == p) return true;
+    return false;
+}
+
+/// Same exact volume and every vertex of `r` a vertex of `hull`.
+template <class Mesh>
+bool unchanged(const Mesh& r, const Mesh& hull) {
+    namespace PMP = CGAL::Polygon_mesh_processing;
+    for (auto v : r.vertices())
+        if (!has_vertex(hull, r.point(v))) return false;
+    return PMP::volume(r) == PMP::volume(hull);
+}
+
+template <class Mesh>
+bool box_and_facet_connected(Mesh& r, const Eigen::AlignedBox3d& b, const std::array<pt, 3>& f) {
+    namespace PMP = CGAL::Polygon_mesh_processing;
+    using fd = typename Mesh::Face_index;
+    using K = typename CGAL::Kernel_traits<typename Mesh::Point>::Kernel;
+    using point = typename K::Point_3;
+    using triangle = typename K::Triangle_3;
+    auto [vol, created] = r.template add_property_map<fd, std::size_t>("f:certipose_volume", 0);
+    const std::size_t nv = PMP::volume_connected_components(r, vol);
+    const typename K::Iso_cuboid_3 cuboid(b.min().x(), b.min().y(), b.min().z(), b.max().x(), b.max().y(),
+                                          b.max().z());
+    const triangle facet(point(f[0][0], f[0][1], f[0][2]), point(f[1][0], f[1][1], f[1][2]),
+                         point(f[2][0], f[2][1], f[2][2]));
+    std::vector<char> meets_box(nv, 0), meets_facet(nv, 0);
+    for (fd face : r.faces()) {
+        const std::size_t id = vol[face];
+        if (id >= nv || (meets_box[id] && meets_facet[id])) continue;
+        auto h = r.halfedge(face);
+        const triangle t(r.point(r.target(h)), r.point(r.target(r.next(h))), r.point(r.source(h)));
+        if (!meets_box[id] && CGAL::do_intersect(t, cuboid)) meets_box[id] = 1;
+        if (!meets_facet[id] && CGAL::do_intersect(t, facet)) meets_facet[id] = 1;
+        if (meets_box[id] && meets_facet[id]) return true;
+    }
+    return false;
+}
 
 }  // namespace detail::occ
 
-/// The paper's Algorithm 2 with exact booleans (see the header comment). Copies are cheap and
-/// share the scene; every member is const and thread-safe.
-class boolean_occlusion {
-public:
-    using kernel = detail::occ::boolean_scene::kernel;
-    using mesh = detail::occ::boolean_scene::mesh;
+template <class Lazy>
+basic_boolean_occlusion<Lazy>::basic_boolean_occlusion(const triangle_mesh& part) : basic_boolean_occlusion(part, {}) {}
 
-    /// Validates `part` as a closed solid and keeps an exact copy; throws mesh_error.
-    explicit boolean_occlusion(const triangle_mesh& part) : boolean_occlusion(part, {}) {}
-
-    /// Part plus external occluders (closed solids; they may touch the part but must not
-    /// enclose the facet). Facet indices refer to `part`.
-    boolean_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders) {
-        auto s = std::make_shared<detail::occ::boolean_scene>();
-        detail::occ::validate_solid(part, "boolean_occlusion: part");
-        for (std::size_t i = 0; i < occluders.size(); ++i)
-            detail::occ::validate_solid(occluders[i],
-                                        "boolean_occlusion: occluder " + std::to_string(i));
-        s->solids.push_back(detail::occ::to_surface_mesh<kernel::Point_3>(part, "boolean_occlusion: part"));
-        s->bboxes.push_back(part.bbox());
-        for (std::size_t i = 0; i < occluders.size(); ++i) {
-            s->solids.push_back(detail::occ::to_surface_mesh<kernel::Point_3>(
-                occluders[i], "boolean_occlusion: occluder " + std::to_string(i)));
-            s->bboxes.push_back(occluders[i].bbox());
-        }
-        for (const auto& f : part.facets())
-            s->facets.push_back({detail::occ::pt{f.v[0].x(), f.v[0].y(), f.v[0].z()},
-                                 detail::occ::pt{f.v[1].x(), f.v[1].y(), f.v[1].z()},
-                                 detail::occ::pt{f.v[2].x(), f.v[2].y(), f.v[2].z()}});
-        scene_ = std::move(s);
+template <class Lazy>
+basic_boolean_occlusion<Lazy>::basic_boolean_occlusion(const triangle_mesh& part,
+                                                  std::span<const triangle_mesh> occluders) {
+    auto s = std::make_shared<scene>();
+    detail::occ::validate_solid(part, "boolean_occlusion: part");
+    for (std::size_t i = 0; i < occluders.size(); ++i)
+        detail::occ::validate_solid(occluders[i],
+                                    "boolean_occlusion: occluder " + std::to_string(i));
+    s->solids.push_back(detail::occ::to_surface_mesh<detail::occ::exact_kernel::Point_3>(part, "boolean_occlusion: part"));
+    s->bboxes.push_back(part.bbox());
+    for (std::size_t i = 0; i < occluders.size(); ++i) {
+        s->solids.push_back(detail::occ::to_surface_mesh<detail::occ::exact_kernel::Point_3>(
+            occluders[i], "boolean_occlusion: occluder " + std::to_string(i)));
+        s->bboxes.push_back(occluders[i].bbox());
     }
+    for (const auto& f : part.facets())
+        s->facets.push_back({detail::occ::pt{f.v[0].x(), f.v[0].y(), f.v[0].z()},
+                             detail::occ::pt{f.v[1].x(), f.v[1].y(), f.v[1].z()},
+                             detail::occ::pt{f.v[2].x(), f.v[2].y(), f.v[2].z()}});
+    scene_ = std::move(s);
+}
 
-    /// Classifies every camera position of `box` against facet `facet` of the part. Throws
-    /// out_of_range("facet"), invalid_argument("box"), and geometry_error if CGAL fails in a
-    /// way that is not a reportable non-manifold result.
-    template <Interval I>
-    visibility classify(const position_box<I>& box, std::size_t facet) const {
-        return classify(detail::occ::box_bounds(box, "boolean_occlusion"), facet);
+template <class Lazy>
+visibility basic_boolean_occlusion<Lazy>::classify(const Eigen::AlignedBox3d& box, std::size_t facet) const {
+    namespace PMP = CGAL::Polygon_mesh_processing;
+    using detail::occ::pt;
+    using point = detail::occ::exact_kernel::Point_3;
+    using mesh = detail::occ::exact_mesh;
+    using detail::occ::box_and_facet_connected;
+    using detail::occ::has_vertex;
+    using detail::occ::unchanged;
+    const Eigen::AlignedBox3d b = detail::occ::checked_bounds(box, "boolean_occlusion");
+    const auto& sc = *scene_;
+    if (facet >= sc.facets.size()) throw out_of_range("facet", facet, sc.facets.size());
+    const detail::round_to_nearest_scope nearest;
+    const std::array<pt, 3>& f = sc.facets[facet];
+
+    std::array<pt, 8> corners{};
+    int front = 0, on_plane = 0;
+    for (int k = 0; k < 8; ++k) {
+        corners[k] = {k & 1 ? b.max().x() : b.min().x(), k & 2 ? b.max().y() : b.min().y(),
+                      k & 4 ? b.max().z() : b.min().z()};
+        const int s = detail::occ::orient3(f[0], f[1], f[2], corners[k]);
+        front += s > 0, on_plane += s == 0;
     }
+    if (on_plane == 8) return visibility::partial;  // H is flat: no volume to subtract from
 
-    /// The same on a box given by double bounds.
-    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet) const {
-        namespace PMP = CGAL::Polygon_mesh_processing;
-        using detail::occ::pt;
-        using point = kernel::Point_3;
-        const Eigen::AlignedBox3d b = detail::occ::checked_bounds(box, "boolean_occlusion");
-        const auto& sc = *scene_;
-        if (facet >= sc.facets.size()) throw out_of_range("facet", facet, sc.facets.size());
-        const detail::round_to_nearest_scope nearest;
-        const std::array<pt, 3>& f = sc.facets[facet];
+    try {
+        // Algorithm 2 line 1: the camera mesh.
+        std::vector<point> pts;
+        for (const pt& c : corners) pts.emplace_back(c[0], c[1], c[2]);
+        for (const pt& v : f) pts.emplace_back(v[0], v[1], v[2]);
+        mesh hull;
+        CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
+        Eigen::AlignedBox3d hb = b;
+        for (const pt& v : f) hb.extend(Eigen::Vector3d(v[0], v[1], v[2]));
 
-        std::array<pt, 8> corners{};
-        int front = 0, on_plane = 0;
-        for (int k = 0; k < 8; ++k) {
-            corners[k] = {k & 1 ? b.max().x() : b.min().x(), k & 2 ? b.max().y() : b.min().y(),
-                          k & 4 ? b.max().z() : b.min().z()};
-            const int s = detail::occ::orient3(f[0], f[1], f[2], corners[k]);
-            front += s > 0, on_plane += s == 0;
-        }
-        if (on_plane == 8) return visibility::partial;  // H is flat: no volume to subtract from
-
-        try {
-            // Algorithm 2 line 1: the camera mesh.
-            std::vector<point> pts;
-            for (const pt& c : corners) pts.emplace_back(c[0], c[1], c[2]);
-            for (const pt& v : f) pts.emplace_back(v[0], v[1], v[2]);
-            mesh hull;
-            CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
-            Eigen::AlignedBox3d hb = b;
-            for (const pt& v : f) hb.extend(Eigen::Vector3d(v[0], v[1], v[2]));
-
-            // Line 3: subtract the scene, one solid at a time.
-            mesh result = hull;
-            for (std::size_t k = 0; k < sc.solids.size(); ++k) {
-                if (!sc.bboxes[k].intersects(hb)) continue;
-                mesh solid = sc.solids[k];  // corefinement refines both operands
-                mesh out;
-                // No throw_on_self_intersection: every operand is free of self-intersections
-                // (the scene was checked once, H is convex, results of corefinement are valid),
-                // and the per-call check doubles the cost.
-                if (!PMP::corefine_and_compute_difference(result, solid, out))
-                    return visibility::partial;  // the difference is not a 2-manifold
-                result = std::move(out);
-                if (result.number_of_faces() == 0) return visibility::occluded;
-                // Line 17: a facet vertex gone from H minus the part.
-                if (k == 0)
-                    for (const pt& v : f)
-                        if (!has_vertex(result, point(v[0], v[1], v[2]))) return visibility::occluded;
-            }
+        // Line 3: subtract the scene, one solid at a time.
+        mesh result = hull;
+        for (std::size_t k = 0; k < sc.solids.size(); ++k) {
+            if (!sc.bboxes[k].intersects(hb)) continue;
+            mesh solid = sc.solids[k];  // corefinement refines both operands
+            mesh out;
+            // No throw_on_self_intersection: every operand is free of self-intersections
+            // (the scene was checked once, H is convex, results of corefinement are valid),
+            // and the per-call check doubles the cost.
+            if (!PMP::corefine_and_compute_difference(result, solid, out))
+                return visibility::partial;  // the difference is not a 2-manifold
+            result = std::move(out);
             if (result.number_of_faces() == 0) return visibility::occluded;
-
-            // Lines 4–6: unchanged → visible.
-            if (front == 8 && unchanged(result, hull)) return visibility::visible;
-
-            // Lines 10–25: does one connected volume touch both the box and the facet?
-            return box_and_facet_connected(result, b, f) ? visibility::partial
-                                                         : visibility::occluded;
-        } catch (const certipose::error&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw geometry_error(std::string("boolean_occlusion: CGAL failed on facet ") +
-                                 std::to_string(facet) + ": " + e.what());
+            // Line 17: a facet vertex gone from H minus the part.
+            if (k == 0)
+                for (const pt& v : f)
+                    if (!has_vertex(result, point(v[0], v[1], v[2]))) return visibility::occluded;
         }
-    }
+        if (result.number_of_faces() == 0) return visibility::occluded;
 
-private:
-    static bool has_vertex(const mesh& m, const kernel::Point_3& p) {
-        for (auto v : m.vertices())
-            if (m.point(v) == p) return true;
-        return false;
-    }
+        // Lines 4–6: unchanged → visible.
+        if (front == 8 && unchanged(result, hull)) return visibility::visible;
 
-    /// Same exact volume and every vertex of `r` a vertex of `hull`.
-    static bool unchanged(const mesh& r, const mesh& hull) {
-        namespace PMP = CGAL::Polygon_mesh_processing;
-        for (auto v : r.vertices())
-            if (!has_vertex(hull, r.point(v))) return false;
-        return PMP::volume(r) == PMP::volume(hull);
+        // Lines 10–25: does one connected volume touch both the box and the facet?
+        return box_and_facet_connected(result, b, f) ? visibility::partial
+                                                     : visibility::occluded;
+    } catch (const certipose::error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw geometry_error(std::string("boolean_occlusion: CGAL failed on facet ") +
+                             std::to_string(facet) + ": " + e.what());
     }
-
-    static bool box_and_facet_connected(mesh& r, const Eigen::AlignedBox3d& b,
-                                        const std::array<detail::occ::pt, 3>& f) {
-        namespace PMP = CGAL::Polygon_mesh_processing;
-        using fd = mesh::Face_index;
-        auto [vol, created] = r.add_property_map<fd, std::size_t>("f:certipose_volume", 0);
-        const std::size_t nv = PMP::volume_connected_components(r, vol);
-        const kernel::Iso_cuboid_3 cuboid(b.min().x(), b.min().y(), b.min().z(), b.max().x(),
-                                          b.max().y(), b.max().z());
-        const kernel::Triangle_3 facet(kernel::Point_3(f[0][0], f[0][1], f[0][2]),
-                                       kernel::Point_3(f[1][0], f[1][1], f[1][2]),
-                                       kernel::Point_3(f[2][0], f[2][1], f[2][2]));
-        std::vector<char> meets_box(nv, 0), meets_facet(nv, 0);
-        for (fd face : r.faces()) {
-            const std::size_t id = vol[face];
-            if (id >= nv || (meets_box[id] && meets_facet[id])) continue;
-            auto h = r.halfedge(face);
-            const kernel::Triangle_3 t(r.point(r.target(h)), r.point(r.target(r.next(h))),
-                                       r.point(r.source(h)));
-            if (!meets_box[id] && CGAL::do_intersect(t, cuboid)) meets_box[id] = 1;
-            if (!meets_facet[id] && CGAL::do_intersect(t, facet)) meets_facet[id] = 1;
-            if (meets_box[id] && meets_facet[id]) return true;
-        }
-        return false;
-    }
-
-    std::shared_ptr<const detail::occ::boolean_scene> scene_;
-};
+}
 
 }  // namespace certipose
+
+#endif  // CERTIPOSE_DETAIL_WITH_DEFINITIONS

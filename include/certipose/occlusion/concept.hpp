@@ -53,4 +53,15 @@ concept OcclusionPolicy =
         { policy.classify(box, facet) } -> std::same_as<visibility>;
     };
 
+/// Whether a policy decides constraint 6 at all: true unless it declares
+/// `static constexpr bool checks_occlusion = false` (as `no_occlusion` does), in which case
+/// VALID boxes are certified for every constraint but occlusion, and results say so.
+template <class P>
+inline constexpr bool checks_occlusion = [] {
+    if constexpr (requires { P::checks_occlusion; })
+        return static_cast<bool>(P::checks_occlusion);
+    else
+        return true;
+}();
+
 }  // namespace certipose

@@ -20,6 +20,9 @@ namespace certipose {
 /// Always VISIBLE. Throws certipose::out_of_range("facet", f, n) for a facet index >= n.
 class no_occlusion {
 public:
+    /// Constraint 6 is never checked (solve_stats::occlusion_checked, "occlusion": "unchecked").
+    static constexpr bool checks_occlusion = false;
+
     explicit no_occlusion(const triangle_mesh& part) noexcept : num_faces_(part.num_faces()) {}
     no_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> /*occluders*/) noexcept
         : num_faces_(part.num_faces()) {}

@@ -1,205 +1,289 @@
 // certipose/solver/pose_solver.hpp — the paper's Algorithm 3, assembled at compile time from
 // policies: certified 6D camera pose boxes for one facet of a part.
 //
-//   using Solver = certipose::pose_solver<
-//       certipose::boost_interval,              // interval type
-//       certipose::thin_lens_camera,            // camera model
-//       certipose::paper_position_constraints,  // position constraint set (class template over I)
-//       certipose::hc4_contraction,             // contractor policy (wraps the set's HC4)
-//       certipose::largest_first,               // bisector (constructible from ε_p)
-//       certipose::aabb_occlusion,              // occlusion policy (built once per scene)
-//       certipose::paper_orientation>;          // orientation policy
-//   Solver solver(mesh, camera, task);
+//   #include <certipose/cgal.hpp>
+//   certipose::pose_solver<> solver(mesh, camera, {.min_view_angle = 0.35});   // every default
 //   auto result = solver.solve(facet_id, {.position_eps = 0.1, .orientation_eps = 0.38});
+//   // the defaults, except one: certipose::pose_solver<certipose::with_contraction<certipose::contraction::acid>>
+//
+// The policies (interval type, camera model, constraint set, contraction, bisector, occlusion,
+// orientation, buffer) come as one bundle, `default_policies` unless a `with_X<...>` replaces
+// one of them (solver/policies.hpp); the bundle is checked here, each policy against its concept.
 //
 // Stage 1 (lines 1–27) paves positions (solver/position_stage.hpp). Stage 2 (lines 28–36) asks
 // the orientation policy for certified orientation boxes of each VALID position box; when it
 // certifies none the position box is bisected (largest first) down to ε_p — halves of a
 // certified position box stay certified for constraints 1–4 and 6, so only orientation is
 // asked again — and a box that still fails at ε_p is reported BOUNDARY. BOUNDARY 6D boxes carry
-// the whole orientation range (nothing was decided about aiming there).
+// the whole orientation range (nothing was decided about aiming there) and the reason they were
+// left undecided (`classified_box::reason`, counted in `solve_stats::boundary_reasons`).
+//
+// Budgets: `max_boxes` counts boxes of both stages. When it ends the position stage, the
+// position boxes certified so far are still oriented (each once, without further bisection), so a
+// run cut short keeps every VALID box it had earned; a deadline or cancellation ends both stages
+// where they are. What is left is BOUNDARY with reason `budget`, never VALID.
+//
+// The mesh must outlive the solver (it is referenced, not copied): a temporary mesh is refused
+// at compile time. The camera's usable distance must be bounded (a pinhole camera's d_max is
+// +inf unless given): the solver throws invalid_argument("d_max") otherwise.
 //
 // The default occlusion policy is `aabb_occlusion` (certified, CGAL): it is only declared here,
-// so this header compiles without CGAL; include <certipose/occlusion/cgal_aabb_occlusion.hpp>
-// (or <certipose/certipose_cgal.hpp>) to use the default, or pass `no_occlusion` /
-// `boolean_occlusion` / your own policy. One solver may solve several facets, also from several
-// threads at once: `solve` is const and every run owns its state.
+// so this header compiles without CGAL; include <certipose/cgal.hpp> to use the default, or pass
+// `no_occlusion` / `boolean_occlusion` / your own policy. One solver may solve several facets,
+// also from several threads at once: `solve` is const and every run owns its state.
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <optional>
 #include <span>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "certipose/detail/format.hpp"
-#include "certipose/bisection/largest_first.hpp"
 #include "certipose/camera/camera_model.hpp"
-#include "certipose/camera/thin_lens_camera.hpp"
-#include "certipose/constraints/paper_position_constraints.hpp"
-#include "certipose/interval/boost_interval.hpp"
+#include "certipose/constraints/concept.hpp"
+#include "certipose/detail/format.hpp"
 #include "certipose/occlusion/concept.hpp"
 #include "certipose/orientation/concept.hpp"
-#include "certipose/orientation/paper_orientation.hpp"
 #include "certipose/solver/contraction.hpp"
+#include "certipose/solver/policies.hpp"
 #include "certipose/solver/position_stage.hpp"
 #include "certipose/solver/result.hpp"
 #include "certipose/solver/task.hpp"
 
 namespace certipose {
 
-class aabb_occlusion;  // occlusion/cgal_aabb_occlusion.hpp (needs certipose::cgal)
+namespace detail {
+template <class T>
+concept complete_type = requires { sizeof(T); };
+template <class O, class I>
+concept complete_occlusion_policy = complete_type<O> && OcclusionPolicy<O, I>;
+}  // namespace detail
 
-template <Interval I = boost_interval, CameraModel Camera = thin_lens_camera,
-          template <class> class ConstraintSet = paper_position_constraints, class Contraction = hc4_contraction,
-          class Bisector = largest_first, class Occlusion = aabb_occlusion, class Orientation = paper_orientation,
-          class Buffer = depth_first>
+template <class Policies = default_policies>
 class pose_solver {
 public:
-    using interval_type = I;
-    using camera_type = Camera;
-    using constraint_set_type = ConstraintSet<I>;
-    using occlusion_type = Occlusion;
-    using orientation_type = Orientation;
+    using policies = Policies;
+    using interval_type = typename Policies::interval;
+    using camera_type = typename Policies::camera;
+    using constraint_set_type = typename Policies::template constraints<interval_type>;
+    using contraction_type = typename Policies::contraction;
+    using bisector_type = typename Policies::bisector;
+    using occlusion_type = typename Policies::occlusion;
+    using orientation_type = typename Policies::orientation;
+    using buffer_type = typename Policies::buffer;
+    /// What the constraint set takes besides the facet (`no_parameters` for the paper's set).
+    using constraint_parameters = constraint_parameters_t<constraint_set_type>;
+    using result_type = solve_result<interval_type>;
+
+private:
+    using I = interval_type;
+    // Each policy against its concept, in the order of the table in solver/policies.hpp, so the
+    // first error names the policy and the concept it misses.
+    static_assert(Interval<I>, "certipose::pose_solver: Policies::interval must model certipose::Interval");
+    static_assert(CameraModel<camera_type>, "certipose::pose_solver: Policies::camera must model certipose::CameraModel");
+    static_assert(PositionConstraintSet<constraint_set_type, I>,
+                  "certipose::pose_solver: Policies::constraints<I> must model certipose::PositionConstraintSet "
+                  "(contract(box), test(box) -> verdict, built from a position_problem [and its parameters])");
+    static_assert(ContractionPolicy<contraction_type, I>,
+                  "certipose::pose_solver: Policies::contraction must model certipose::ContractionPolicy "
+                  "(static wrap(contractor) -> Contractor; e.g. certipose::contraction::hc4)");
+    static_assert(PositionBisector<bisector_type, I>,
+                  "certipose::pose_solver: Policies::bisector must model certipose::PositionBisector "
+                  "(choose(box) -> std::optional<split>, constructible from position_eps)");
+    static_assert(detail::complete_occlusion_policy<occlusion_type, I>,
+                  "certipose::pose_solver: Policies::occlusion must model certipose::OcclusionPolicy (the default, "
+                  "aabb_occlusion, needs <certipose/cgal.hpp> or <certipose/occlusion/cgal_aabb_occlusion.hpp>)");
+    static_assert(OrientationPolicy<orientation_type, I, camera_type>,
+                  "certipose::pose_solver: Policies::orientation must model certipose::OrientationPolicy "
+                  "(orient(position, facet, camera, orientation_eps) -> orientation_result<I>)");
+    static_assert(PavingBufferPolicy<buffer_type>,
+                  "certipose::pose_solver: Policies::buffer must model certipose::PavingBufferPolicy");
+
+public:
+    /// Everything besides the part, the camera and the task, all optional.
+    struct setup {
+        /// External occluders (closed solids) added to the part's own occlusion; read while the
+        /// solver is built, not kept. Ignored when `occlusion` is given.
+        std::span<const triangle_mesh> occluders{};
+        /// A ready occlusion policy (e.g. one shared by several solvers); built from the part
+        /// and `occluders` when absent.
+        std::optional<occlusion_type> occlusion{};
+        /// The orientation policy (with its options).
+        orientation_type orientation{};
+        /// The constraint set's run-time parameters (solver/policies.hpp, constraints/concept.hpp).
+        constraint_parameters constraints{};
+    };
 
     /// Builds the occlusion policy for the scene (the part plus optional external occluders)
-    /// once; validates the task. The mesh must outlive the solver.
-    pose_solver(const triangle_mesh& part, Camera camera, inspection_task task,
-                std::span<const triangle_mesh> occluders = {}, Orientation orientation = {})
-        : pose_solver(part, std::move(camera), task, Occlusion(part, occluders), std::move(orientation)) {}
-
-    /// With a ready occlusion policy (e.g. one shared by several solvers, or configured).
-    pose_solver(const triangle_mesh& part, Camera camera, inspection_task task, Occlusion occlusion,
-                Orientation orientation)
-        : part_(&part), camera_(std::move(camera)), task_(task), occlusion_(std::move(occlusion)),
-          orientation_(std::move(orientation)) {
-        static_assert(PositionConstraintSet<ConstraintSet<I>, I>,
-                      "pose_solver: ConstraintSet<I> must model PositionConstraintSet");
-        static_assert(OcclusionPolicy<Occlusion, I>, "pose_solver: Occlusion must model OcclusionPolicy");
-        static_assert(OrientationPolicy<Orientation, I, Camera>,
-                      "pose_solver: Orientation must model OrientationPolicy");
+    /// once; validates the task and the camera's distance range. The mesh must outlive the solver.
+    pose_solver(const triangle_mesh& part, camera_type camera, inspection_task task, setup s = {})
+        : part_(&part),
+          camera_(std::move(camera)),
+          task_(task),
+          occlusion_(s.occlusion ? std::move(*s.occlusion) : occlusion_type(part, s.occluders)),
+          orientation_(std::move(s.orientation)),
+          constraint_parameters_(std::move(s.constraints)) {
         task_.validate();
         range_ = capped_distance_range(camera_, task_.max_metres_per_pixel);
         if (range_.empty())
             throw invalid_argument("max_metres_per_pixel",
                                    "pose_solver: the resolution requirement leaves no usable distance (d_max " +
-                                       detail::format_double(range_.max) + " < d_min " + detail::format_double(range_.min) + ")");
+                                       detail::format_double(range_.max) + " < d_min " +
+                                       detail::format_double(range_.min) + ")");
         if (!std::isfinite(range_.max))
             throw invalid_argument("d_max", "pose_solver: the camera's usable distance is unbounded; set "
                                             "max_metres_per_pixel or use a camera with a finite d_max");
+        // The set is built per facet in solve(); building one now checks its parameters here,
+        // where they were given, instead of at the first solve.
+        (void)make_constraint_set<constraint_set_type>(position_problem{part.facet(0), range_, task_},
+                                                       constraint_parameters_);
     }
 
-    const Camera& camera() const noexcept { return camera_; }
+    /// A temporary mesh would be destroyed before `solve` reads it: refused at compile time.
+    pose_solver(const triangle_mesh&& part, camera_type camera, inspection_task task, setup s = {}) = delete;
+
+    const camera_type& camera() const noexcept { return camera_; }
     const inspection_task& task() const noexcept { return task_; }
     distance_range range() const noexcept { return range_; }
     const triangle_mesh& part() const noexcept { return *part_; }
-    const Occlusion& occlusion() const noexcept { return occlusion_; }
+    const occlusion_type& occlusion() const noexcept { return occlusion_; }
+    const orientation_type& orientation() const noexcept { return orientation_; }
+    const constraint_parameters& constraints() const noexcept { return constraint_parameters_; }
 
     /// Certified pose boxes for facet `facet_index` (Algorithm 3). Throws out_of_range for a bad
     /// index and invalid_argument for bad options; budgets and cancellation end the run early
-    /// with `stats.reason` saying why (boxes not reached are reported BOUNDARY, never VALID).
-    solve_result<I> solve(std::size_t facet_index, const solve_options& options = {}) const {
-        options.validate();
-        using clock = std::chrono::steady_clock;
-        const auto start = clock::now();
-        const facet& f = part_->facet(facet_index);  // throws out_of_range("facet", ...)
-        const position_problem problem{f, range_, task_};
-
-        solve_result<I> out;
-        out.facet_index = facet_index;
-        solve_stats& st = out.stats;
-        std::optional<clock::time_point> deadline;
-        if (options.time_limit) deadline = start + *options.time_limit;
-        const auto seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
-
-        // ---- stage 1: positions -------------------------------------------------------------
-        paver_options popt;
-        popt.max_boxes = options.max_boxes;
-        popt.deadline = deadline;
-        popt.record_tree = options.keep_tree;
-        if (options.progress) {
-            popt.progress_every = 256;
-            popt.progress = [&](const paver_stats& s) {
-                return options.progress(solve_progress{"position", s.boxes, s.pending, 0, 0, seconds()});
-            };
-        }
-        auto stage1 = pave_positions<I, ConstraintSet<I>, Contraction, Bisector, Buffer>(
-            problem, facet_index, occlusion_, popt, options.position_eps, options.stop);
-        const auto& ps = stage1.boxes.stats;
-        st.contractions = ps.contractions;
-        st.bisections = ps.bisections;
-        st.occlusion_tests = stage1.occlusion_tests;
-        st.position_valid = stage1.boxes.valid.size();
-        st.position_boundary = stage1.boxes.boundary.size() + stage1.boxes.pending.size();
-        st.reason = ps.reason;
-        st.seconds_position = seconds();
-        if (options.keep_tree) out.tree = std::move(stage1.boxes.tree);
-
-        for (const auto& b : stage1.boxes.boundary) push_boundary(out, b);
-        for (const auto& b : stage1.boxes.pending) push_boundary(out, b);
-
-        // ---- stage 2: orientations (Algorithm 3 lines 28–36) ----------------------------------
-        Bisector bisector(options.position_eps);  // may be stateful (round_robin)
-        std::vector<position_box<I>> todo(stage1.boxes.valid.rbegin(), stage1.boxes.valid.rend());
-        std::size_t done = ps.boxes;
-        while (!todo.empty()) {
-            if (st.reason == termination::completed) {
-                if (options.stop.stop_requested()) st.reason = termination::cancelled;
-                else if (done >= options.max_boxes) st.reason = termination::box_budget;
-                else if (deadline && clock::now() >= *deadline) st.reason = termination::deadline;
-                else if (options.progress && done % 64 == 0 &&
-                         !options.progress(solve_progress{"orientation", done, todo.size(), st.valid, st.boundary,
-                                                          seconds()}))
-                    st.reason = termination::cancelled;
-            }
-            position_box<I> p = std::move(todo.back());
-            todo.pop_back();
-            if (st.reason != termination::completed) {  // stopped: what is left stays undecided
-                push_boundary(out, p);
-                continue;
-            }
-            ++done;
-            const orientation_result<I> o = orientation_.orient(p, f, camera_, options.orientation_eps);
-            st.orientation_certifications += o.certifications;
-            if (!o.boxes.empty()) {
-                for (const auto& e : o.boxes) {
-                    out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{p, e}});
-                    ++st.valid;
-                }
-                continue;
-            }
-            const std::optional<split> s = bisector.choose(p);
-            if (!s) {
-                push_boundary(out, p);
-                continue;
-            }
-            ++st.bisections;
-            auto [left, right] = bisect_at(p, s->dimension, s->point);
-            todo.push_back(std::move(right));
-            todo.push_back(std::move(left));
-        }
-        st.seconds_orientation = seconds() - st.seconds_position;
-        st.seconds = seconds();
-        return out;
-    }
+    /// with `stats.reason` saying why (see the header comment: boxes not decided are BOUNDARY,
+    /// never VALID).
+    result_type solve(std::size_t facet_index, const solve_options& options = {}) const;
 
 private:
     /// An undecided box: the position box with every orientation (nothing decided about aim).
-    static void push_boundary(solve_result<I>& out, const position_box<I>& p) {
-        const rounding_guard<I> rounding;
-        const double pi_hi = std::nextafter(std::numbers::pi, 4.0);
-        const orientation_box<I> all = orientation_box<I>::from_bounds({{{-pi_hi, pi_hi}, {0.0, pi_hi}, {-pi_hi, pi_hi}}});
-        out.boxes.push_back(classified_box<I>{box_class::boundary, pose_box<I>{p, all}});
-        ++out.stats.boundary;
-    }
+    static void push_boundary(result_type& out, const position_box<I>& p, boundary_reason why);
 
     const triangle_mesh* part_;
-    Camera camera_;
+    camera_type camera_;
     inspection_task task_;
-    Occlusion occlusion_;
-    Orientation orientation_;
+    occlusion_type occlusion_;
+    orientation_type orientation_;
+    constraint_parameters constraint_parameters_;
     distance_range range_{};
 };
+
+// Out of the class body, so that they are not inline: an explicit instantiation declaration
+// (certipose::precompiled, detail/precompiled.hpp) then keeps a user's translation unit from
+// compiling them again.
+
+template <class Policies>
+auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& options) const -> result_type {
+    options.validate();
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    const facet& f = part_->facet(facet_index);  // throws out_of_range("facet", ...)
+    const position_problem problem{f, range_, task_};
+
+    result_type out;
+    out.facet_index = facet_index;
+    solve_stats& st = out.stats;
+    st.occlusion_checked = checks_occlusion<occlusion_type>;
+    std::optional<clock::time_point> deadline;
+    if (options.time_limit) deadline = start + *options.time_limit;
+    const auto seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+
+    // ---- stage 1: positions -----------------------------------------------------------------
+    paver_options popt;
+    popt.max_boxes = options.max_boxes;
+    popt.deadline = deadline;
+    popt.record_tree = options.keep_tree;
+    if (options.progress) {
+        popt.progress_every = 256;
+        popt.progress = [&](const paver_stats& s) {
+            return options.progress(solve_progress{"position", s.boxes, s.pending, 0, 0, seconds()});
+        };
+    }
+    auto stage1 = pave_positions<I, constraint_set_type, contraction_type, bisector_type, buffer_type>(
+        problem, facet_index, occlusion_, popt, options.position_eps, options.stop, constraint_parameters_);
+    const auto& ps = stage1.boxes.stats;
+    st.contractions = ps.contractions;
+    st.bisections = ps.bisections;
+    st.occlusion_tests = stage1.occlusion_tests;
+    st.position_valid = stage1.boxes.valid.size();
+    st.position_boundary = stage1.boxes.boundary.size() + stage1.boxes.pending.size();
+    st.reason = ps.reason;
+    st.seconds_position = seconds();
+    if (options.keep_tree) out.tree = std::move(stage1.boxes.tree);
+
+    for (std::size_t i = 0; i < stage1.boxes.boundary.size(); ++i)
+        push_boundary(out, stage1.boxes.boundary[i], stage1.boundary_reasons[i]);
+    for (const auto& b : stage1.boxes.pending) push_boundary(out, b, boundary_reason::budget);
+
+    // ---- stage 2: orientations (Algorithm 3 lines 28–36) --------------------------------------
+    // After a box budget the certified position boxes are still oriented, each once (no more
+    // bisection); a deadline or cancellation (`halted`) leaves the rest undecided.
+    bisector_type bisector(options.position_eps);  // may be stateful (round_robin)
+    std::vector<position_box<I>> todo(stage1.boxes.valid.rbegin(), stage1.boxes.valid.rend());
+    std::size_t done = ps.boxes;
+    bool halted = st.reason == termination::deadline || st.reason == termination::cancelled;
+    while (!todo.empty()) {
+        if (!halted) {
+            if (options.stop.stop_requested()) {
+                st.reason = termination::cancelled, halted = true;
+            } else if (deadline && clock::now() >= *deadline) {
+                st.reason = termination::deadline, halted = true;
+            } else if (options.progress && done % 64 == 0 &&
+                       !options.progress(solve_progress{"orientation", done, todo.size(), st.valid, st.boundary,
+                                                        seconds()})) {
+                st.reason = termination::cancelled, halted = true;
+            } else if (st.reason == termination::completed && done >= options.max_boxes) {
+                st.reason = termination::box_budget;
+            }
+        }
+        position_box<I> p = std::move(todo.back());
+        todo.pop_back();
+        if (halted) {
+            push_boundary(out, p, boundary_reason::budget);
+            continue;
+        }
+        ++done;
+        const orientation_result<I> o = orientation_.orient(p, f, camera_, options.orientation_eps);
+        st.orientation_certifications += o.certifications;
+        if (!o.boxes.empty()) {
+            for (const auto& e : o.boxes) {
+                out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{p, e}});
+                ++st.valid;
+            }
+            continue;
+        }
+        if (st.reason != termination::completed) {  // a budget forbids bisecting further
+            push_boundary(out, p, boundary_reason::budget);
+            continue;
+        }
+        const std::optional<split> s = bisector.choose(p);
+        if (!s) {
+            push_boundary(out, p, boundary_reason::field_of_view);
+            continue;
+        }
+        ++st.bisections;
+        auto [left, right] = bisect_at(p, s->dimension, s->point);
+        todo.push_back(std::move(right));
+        todo.push_back(std::move(left));
+    }
+    st.seconds_orientation = seconds() - st.seconds_position;
+    st.seconds = seconds();
+    return out;
+}
+
+template <class Policies>
+void pose_solver<Policies>::push_boundary(result_type& out, const position_box<I>& p, boundary_reason why) {
+    const rounding_guard<I> rounding;
+    const double pi_hi = std::nextafter(std::numbers::pi, 4.0);
+    const orientation_box<I> all = orientation_box<I>::from_bounds({{{-pi_hi, pi_hi}, {0.0, pi_hi}, {-pi_hi, pi_hi}}});
+    out.boxes.push_back(classified_box<I>{box_class::boundary, pose_box<I>{p, all}, why});
+    ++out.stats.boundary;
+    ++out.stats.boundary_reasons[static_cast<std::size_t>(why)];
+}
 
 }  // namespace certipose

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <utility>
+#include <vector>
 
 #include "certipose/bisection/largest_first.hpp"
 #include "certipose/constraints/concept.hpp"
@@ -27,7 +28,7 @@ namespace detail {
 /// contractor policies can wrap it without copying the set.
 template <class Set>
 struct set_contractor {
-    Set* set;
+    Set* set = nullptr;
     template <class Box>
     void contract(Box& box) { set->contract(box); }
 };
@@ -60,19 +61,23 @@ struct position_test {
 template <Interval I>
 struct position_stage_result {
     certipose::paving<position_box<I>> boxes;  ///< VALID, BOUNDARY (and pending) position boxes
+    /// Why each BOUNDARY box of `boxes.boundary` (same order) was left undecided.
+    std::vector<boundary_reason> boundary_reasons;
     position_box<I> initial_box;
     std::size_t occlusion_tests = 0;
 };
 
-/// Paves the positions of one facet. `Set` models PositionConstraintSet over I; `Contraction`
-/// is a contractor policy (solver/contraction.hpp); `Bisector` is constructible from ε_p.
-template <Interval I, class Set, class Contraction = hc4_contraction, class Bisector = largest_first,
+/// Paves the positions of one facet. `Set` models PositionConstraintSet over I and is built from
+/// `problem` and `parameters`; `Contraction` is a contraction policy (solver/contraction.hpp);
+/// `Bisector` is constructible from ε_p.
+template <Interval I, class Set, class Contraction = contraction::hc4, class Bisector = largest_first,
           class Buffer = depth_first, class Occlusion>
     requires PositionConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
 position_stage_result<I> pave_positions(const position_problem& problem, std::size_t facet_index,
                                         const Occlusion& occlusion, const paver_options& options,
-                                        double position_eps, std::stop_token stop = {}) {
-    Set set(problem);
+                                        double position_eps, std::stop_token stop = {},
+                                        const constraint_parameters_t<Set>& parameters = {}) {
+    Set set = make_constraint_set<Set>(problem, parameters);
     position_stage_result<I> out;
     out.initial_box = set.initial_box();
     auto contractor = Contraction::wrap(detail::set_contractor<Set>{&set});
@@ -84,6 +89,12 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
         return out;
     }
     out.boxes = p.run(out.initial_box, stop);
+    // A BOUNDARY box was contracted and tested just before the bisector declined it, so testing
+    // it again gives the same answer: undecided by the set (which constraint, if it says), or
+    // certified by the set and PARTIAL for occlusion. Costs one test per BOUNDARY box.
+    out.boundary_reasons.reserve(out.boxes.boundary.size());
+    for (const auto& b : out.boxes.boundary)
+        out.boundary_reasons.push_back(undecided_constraint<I>(set, b).value_or(boundary_reason::occlusion));
     return out;
 }
 

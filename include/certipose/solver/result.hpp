@@ -7,24 +7,36 @@
 // (`stats.termination` says which).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "certipose/constraints/concept.hpp"
 #include "certipose/pose/pose_box.hpp"
 #include "certipose/solver/task.hpp"
 
 namespace certipose {
 
-/// A returned box: `cls` is box_class::valid or box_class::boundary.
+/// A returned box: `cls` is box_class::valid or box_class::boundary; for a BOUNDARY box,
+/// `reason` says which constraint (or budget) left it undecided.
 template <Interval I>
 struct classified_box {
     box_class cls;
     pose_box<I> box;
+    boundary_reason reason = boundary_reason::constraint;
 };
 
 /// Per-stage counts and times.
 struct solve_stats {
     std::size_t valid = 0, boundary = 0;       ///< 6D boxes returned per class
+    /// BOUNDARY boxes per reason, indexed by boundary_reason (they sum to `boundary`).
+    std::array<std::size_t, boundary_reason_count> boundary_reasons{};
+    /// False when the occlusion policy does not check constraint 6 (no_occlusion): VALID boxes
+    /// then hold for every constraint but occlusion.
+    bool occlusion_checked = true;
     std::size_t position_valid = 0;            ///< certified position boxes (before orientation)
     std::size_t position_boundary = 0;
     std::size_t contractions = 0, bisections = 0;
@@ -34,6 +46,30 @@ struct solve_stats {
     termination reason = termination::completed;
 };
 
+/// The reason most BOUNDARY boxes have (ties: the earlier reason); nothing without BOUNDARY boxes.
+inline std::optional<boundary_reason> main_boundary_reason(const solve_stats& s) {
+    std::optional<boundary_reason> best;
+    for (std::size_t r = 0; r < boundary_reason_count; ++r)
+        if (s.boundary_reasons[r] > 0 && (!best || s.boundary_reasons[r] > s.boundary_reasons[static_cast<std::size_t>(*best)]))
+            best = static_cast<boundary_reason>(r);
+    return best;
+}
+
+/// "occlusion 1000, view_angle 124": the reasons of the BOUNDARY boxes, most frequent first.
+inline std::string boundary_summary(const solve_stats& s) {
+    std::array<std::size_t, boundary_reason_count> order{};
+    for (std::size_t r = 0; r < boundary_reason_count; ++r) order[r] = r;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return s.boundary_reasons[a] > s.boundary_reasons[b]; });
+    std::string out;
+    for (std::size_t r : order) {
+        if (s.boundary_reasons[r] == 0) break;
+        if (!out.empty()) out += ", ";
+        out += std::string(to_string(static_cast<boundary_reason>(r))) + " " + std::to_string(s.boundary_reasons[r]);
+    }
+    return out.empty() ? "none" : out;
+}
+
 template <Interval I>
 struct solve_result {
     std::size_t facet_index = 0;
@@ -41,6 +77,11 @@ struct solve_result {
     solve_stats stats;
     /// The position stage's bisection tree, when solve_options::keep_tree.
     std::vector<paving_node<position_box<I>>> tree;
+
+    /// BOUNDARY boxes left undecided for `r`.
+    std::size_t boundary_because(boundary_reason r) const noexcept {
+        return stats.boundary_reasons[static_cast<std::size_t>(r)];
+    }
 };
 
 }  // namespace certipose

@@ -14,6 +14,7 @@
 #include <limits>
 #include <numbers>
 
+#include "certipose/detail/config.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/detail/fenv.hpp"
 #include "certipose/interval/detail/transcendental.hpp"
@@ -24,7 +25,7 @@ namespace certipose::expr::detail {
 inline constexpr double inf = std::numeric_limits<double>::infinity();
 
 template <class I>
-I non_negative(const I& a) {
+CERTIPOSE_DETAIL_INLINE I non_negative(const I& a) {
     return intersect(a, I(0.0, inf));
 }
 
@@ -82,7 +83,7 @@ I sqrt_enclosure(const I& y) {
 
 /// a ∩ (r ∪ −r) as a hull: the two branches of an even function's inverse.
 template <class I>
-I two_branches(const I& a, const I& r) {
+CERTIPOSE_DETAIL_INLINE I two_branches(const I& a, const I& r) {
     if (is_empty(r)) return r;
     return hull(intersect(a, r), intersect(a, -r));
 }

@@ -1,0 +1,22 @@
+// certipose/cgal.hpp — everything in certipose, the default solver included (certipose::cgal).
+//
+// <certipose/certipose.hpp> plus what needs CGAL: the certified occlusion policies
+// (`aabb_occlusion`, the default, and the paper's `boolean_occlusion`), `read_mesh` for OFF, OBJ,
+// PLY and STL, and the `cgal_interval` backend. So `certipose::pose_solver<>` works after this
+// one include.
+//
+// Compile time: header-only, a translation unit that runs the default pipeline parses CGAL and
+// compiles the pipeline itself. Linking `certipose::precompiled` instead of `certipose::cgal`
+// defines CERTIPOSE_PRECOMPILED: this header then declares the CGAL facilities without parsing
+// CGAL, and the default pipelines are compiled once, in that library (detail/precompiled.hpp).
+#pragma once
+
+#include "certipose/certipose.hpp"
+
+#include "certipose/interval/cgal_eigen.hpp"
+#include "certipose/interval/cgal_interval.hpp"
+#include "certipose/io/read_mesh.hpp"
+#include "certipose/occlusion/cgal_aabb_occlusion.hpp"
+#include "certipose/occlusion/cgal_boolean_occlusion.hpp"
+
+#include "certipose/detail/precompiled.hpp"

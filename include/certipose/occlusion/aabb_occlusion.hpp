@@ -1,0 +1,76 @@
+// certipose/occlusion/aabb_occlusion.hpp — `aabb_occlusion`, the default occlusion policy:
+// its declaration, which needs no CGAL.
+//
+// What it decides and how is in certipose/occlusion/cgal_aabb_occlusion.hpp, which holds the
+// definitions (CGAL's AABB tree and exact predicates) and is what header-only users include.
+// This header is what the solver and the precompiled build (certipose::precompiled) see: a user
+// translation unit that only declares the policy does not parse CGAL.
+#pragma once
+
+#include <certipose/detail/config.hpp>
+#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/interval/concept.hpp>
+#include <certipose/occlusion/concept.hpp>
+#include <certipose/occlusion/detail/box_bounds.hpp>
+#include <certipose/pose/pose_box.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace certipose {
+
+namespace detail::occ {
+
+struct aabb_scene;  // the triangles and the AABB tree (cgal_aabb_occlusion.hpp)
+
+/// Counters of one classification (tests and benchmarks read them through `explain`).
+struct aabb_trace {
+    std::size_t triangles_tested = 0;
+    std::size_t exact_clips = 0;
+    std::size_t blocker = static_cast<std::size_t>(-1);  ///< a triangle that blocks, if any
+};
+
+}  // namespace detail::occ
+
+/// Fast certified occlusion policy (see certipose/occlusion/cgal_aabb_occlusion.hpp). Copies
+/// are cheap and share the scene; every member is const and thread-safe.
+class aabb_occlusion {
+public:
+    /// What `explain` reports about one classification.
+    using trace = detail::occ::aabb_trace;
+
+    /// Validates `part` as a closed solid and builds the AABB tree; throws mesh_error.
+    explicit aabb_occlusion(const triangle_mesh& part);
+
+    /// Part plus external occluders (each a closed solid; they may touch the part but must not
+    /// enclose the facet). Facet indices refer to `part`.
+    aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders);
+
+    /// Classifies every camera position of `box` against facet `facet` of the part. Throws
+    /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box).
+    template <Interval I>
+    visibility classify(const position_box<I>& box, std::size_t facet) const {
+        return classify(detail::occ::box_bounds(box, "aabb_occlusion"), facet);
+    }
+
+    /// The same on a box given by double bounds.
+    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet) const;
+
+    /// `classify`, also reporting how the answer was reached (for tests and benchmarks).
+    visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info) const;
+
+    /// At most this many distinct planes of blocking triangles are tried as walls.
+    static constexpr std::size_t max_wall_planes = 8;
+
+    /// Number of exact rational fallbacks taken so far by all copies (diagnostics).
+    std::uint64_t exact_fallbacks() const noexcept;
+
+private:
+    std::shared_ptr<const detail::occ::aabb_scene> scene_;
+};
+
+}  // namespace certipose
