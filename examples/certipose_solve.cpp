@@ -25,6 +25,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <type_traits>
 
 #include <unistd.h>
 
@@ -46,7 +47,10 @@ template <class Occlusion>
 certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                       const certipose::inspection_task& task, std::size_t facet,
                                       const certipose::solve_options& options) {
-    using solver = certipose::pose_solver<certipose::with_occlusion<Occlusion, certipose::with_camera<certipose::calibrated_camera>>>;
+    // With aabb: exactly the pipeline certipose::precompiled instantiates.
+    using calibrated = certipose::with_camera<certipose::calibrated_camera>;
+    using solver = certipose::pose_solver<std::conditional_t<std::is_same_v<Occlusion, certipose::aabb_occlusion>, calibrated,
+                                                             certipose::with_occlusion<Occlusion, calibrated>>>;
     return solver(mesh, camera, task).solve(facet, options);
 }
 

@@ -14,6 +14,8 @@
 // its tests only.
 #pragma once
 
+#include "program_support.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include <charconv>
@@ -28,9 +30,9 @@
 
 namespace certipose_solve {
 
-inline constexpr int exit_ok = 0;
-inline constexpr int exit_failure = 1;  ///< bad input file, solver or write error
-inline constexpr int exit_usage = 2;    ///< bad command line
+using certipose_program::exit_failure;
+using certipose_program::exit_ok;
+using certipose_program::exit_usage;
 
 enum class occlusion_mode { aabb, boolean, none };
 
@@ -66,59 +68,11 @@ struct parse_outcome {
 };
 
 namespace detail {
-
-/// Thrown by the checks below; becomes the one error line.
-struct usage_error : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-inline double parse_double(const std::string& option, const std::string& text, const char* what) {
-    double v = 0.0;
-    const char* first = text.data();
-    const char* last = text.data() + text.size();
-    const auto [end, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc{} || end != last || text.empty())
-        throw usage_error(option + ": expected " + what + ", got '" + text + "'");
-    if (!(v > 0.0) || !std::isfinite(v))
-        throw usage_error(option + ": must be " + what + ", got " + text);
-    return v;
-}
-
-inline std::size_t parse_count(const std::string& option, const std::string& text,
-                               std::size_t min) {
-    std::size_t v = 0;
-    const char* first = text.data();
-    const char* last = text.data() + text.size();
-    const auto [end, ec] = std::from_chars(first, last, v);  // decimal digits only, no sign
-    if (ec == std::errc::result_out_of_range)
-        throw usage_error(option + ": " + text + " is too large");
-    if (ec != std::errc{} || end != last || text.empty())
-        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got '" +
-                          text + "'");
-    if (v < min)
-        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got " +
-                          text);
-    return v;
-}
-
-/// The file will be written at the end of a possibly long run: fail now if it cannot be.
-inline void check_output(const std::string& option, const std::filesystem::path& p) {
-    std::error_code ec;
-    if (!p.has_filename()) throw usage_error(option + ": not a file name: '" + p.string() + "'");
-    if (std::filesystem::is_directory(p, ec))
-        throw usage_error(option + ": " + p.string() + " is a directory");
-    const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
-    if (!std::filesystem::is_directory(dir, ec))
-        throw usage_error(option + ": directory does not exist: " + dir.string());
-}
-
-inline std::string one_line(std::string s) {
-    for (char& c : s)
-        if (c == '\n' || c == '\r') c = ' ';
-    while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
-}
-
+using certipose_program::check_output;
+using certipose_program::one_line;
+using certipose_program::parse_count;
+using certipose_program::parse_double;
+using certipose_program::usage_error;
 }  // namespace detail
 
 /// Parses the command line (see the header comment). Writes only the --help text to `out` and

@@ -6,7 +6,8 @@
 // and its policies (with `no_occlusion`; the certified occlusion policies, mesh reading and the
 // default solver are in <certipose/cgal.hpp>), triangle meshes and the sample part, the
 // independent point checker, and the writers that need neither CGAL nor JSON (OFF, PLY, the
-// result document). The JSON reader/writer is <certipose/io/json.hpp> (it needs nlohmann-json).
+// result document), the all-or-nothing output files, and the whole-part solver (oneTBB). The JSON
+// readers/writers are <certipose/io/json.hpp> and <certipose/io/part_files.hpp> (nlohmann-json).
 // The one-facility headers under certipose/ stay available for those who want less.
 #pragma once
 
@@ -56,9 +57,13 @@
 #include "certipose/solver/result.hpp"
 #include "certipose/solver/task.hpp"
 
+#include "certipose/io/output_files.hpp"
 #include "certipose/io/ply.hpp"
 #include "certipose/io/result_document.hpp"
 #include "certipose/io/write_file.hpp"
 #include "certipose/io/write_mesh.hpp"
+
+#include "certipose/part/part_solver.hpp"
+#include "certipose/part/selection.hpp"
 
 #include "certipose/verify/point_check.hpp"

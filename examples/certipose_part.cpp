@@ -1,0 +1,219 @@
+// certipose-part — certified camera pose boxes for every facet of a part (DESIGN.md §6,
+// "Whole-part output"), in parallel.
+//
+//   certipose-part --mesh PART --camera CAMERA.json --position-eps E --orientation-eps O --out DIR
+//                  [--threads N] [--facets 0,5,17-30] [--boundary] [--scale S]
+//                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
+//                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N] [--quiet]
+//
+// Writes DIR/summary.json and DIR/boxes.jsonl (VALID boxes; BOUNDARY ones too with --boundary),
+// both committed together at the end (io/output_files.hpp): a run that fails leaves DIR as it
+// was. SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
+// the summary marked "interrupted", and the exit code is 130/143. Every error is one line
+// "certipose-part: ..." on stderr: exit 1 for bad input files, solver or write errors, 2 for a
+// bad command line. A progress line (facets, rate, ETA) goes to stderr when it is a terminal.
+#include "program_support.hpp"
+
+#include <certipose/cgal.hpp>
+#include <certipose/io/json.hpp>
+#include <certipose/io/output_files.hpp>
+#include <certipose/io/part_files.hpp>
+#include <certipose/part/part_solver.hpp>
+#include <certipose/part/selection.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <type_traits>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace certipose_program;
+
+struct arguments {
+    fs::path mesh, camera, out;
+    double position_eps = 0.1, orientation_eps = 0.38, scale = 1.0;
+    std::size_t threads = 0;
+    std::string facets;
+    bool boundary = false, quiet = false;
+    std::string occlusion = "aabb";
+    std::optional<std::size_t> max_boxes_per_facet, max_boxes;
+    std::optional<double> facet_time_limit, time_limit;
+};
+
+/// The parsed command line, or the exit code (0 after --help, 2 after a usage error).
+std::optional<arguments> parse(int argc, char** argv, int& code) {
+    CLI::App app{"certipose-part: certified camera pose boxes for every facet of a part, in parallel. Writes "
+                 "DIR/summary.json and DIR/boxes.jsonl (DESIGN.md section 6).",
+                 "certipose-part"};
+    std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
+        facet_time, time_limit, max_boxes, occlusion = "aabb";
+    bool boundary = false, quiet = false;
+    app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
+    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")->type_name("METRES")->required();
+    app.add_option("--orientation-eps", orientation_eps, "orientation threshold, radians (paper: 0.38)")->type_name("RADIANS")->required();
+    app.add_option("--out", out, "output folder (created if missing)")->type_name("DIR")->required();
+    app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
+    app.add_option("--facets", facets, "facets to solve, e.g. 0,5,17-30 (default: all)")->type_name("LIST");
+    app.add_flag("--boundary", boundary, "also write BOUNDARY boxes");
+    app.add_option("--scale", scale, "multiply mesh coordinates by S (e.g. 0.001 for mm)")->type_name("S");
+    app.add_option("--occlusion", occlusion, "occlusion test: aabb (default), boolean or none")->type_name("MODE")->check(CLI::IsMember({"aabb", "boolean", "none"}));
+    app.add_option("--max-boxes-per-facet", per_facet_boxes, "box budget of each facet")->type_name("K");
+    app.add_option("--facet-time-limit", facet_time, "time budget of each facet")->type_name("SECONDS");
+    app.add_option("--time-limit", time_limit, "time budget of the whole run")->type_name("SECONDS");
+    app.add_option("--max-boxes", max_boxes, "box budget of the whole run (facets in order)")->type_name("N");
+    app.add_flag("--quiet,-q", quiet, "print nothing but errors");
+    const auto fail = [&](const std::string& message) {
+        std::cerr << "certipose-part: error: " << one_line(message) << " (run with --help for usage)\n";
+        code = exit_usage;
+        return std::nullopt;
+    };
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        code = exit_ok;
+        return std::nullopt;
+    } catch (const CLI::ParseError& e) {
+        return fail(e.what());
+    }
+    try {
+        arguments a;
+        a.mesh = mesh;
+        a.camera = camera;
+        a.out = out;
+        a.position_eps = parse_double("--position-eps", position_eps, "a positive finite number of metres");
+        a.orientation_eps = parse_double("--orientation-eps", orientation_eps, "a positive finite number of radians");
+        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
+        if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
+        a.facets = facets;
+        a.boundary = boundary;
+        a.quiet = quiet;
+        a.occlusion = occlusion;
+        if (!per_facet_boxes.empty()) a.max_boxes_per_facet = parse_count("--max-boxes-per-facet", per_facet_boxes, 1);
+        if (!max_boxes.empty()) a.max_boxes = parse_count("--max-boxes", max_boxes, 1);
+        if (!facet_time.empty()) a.facet_time_limit = parse_double("--facet-time-limit", facet_time, "a positive finite number of seconds");
+        if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
+        std::error_code ec;
+        if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec))
+            throw usage_error("--out: " + a.out.string() + " exists and is not a directory");
+        const fs::path parent = fs::absolute(a.out).parent_path();
+        if (!fs::is_directory(parent, ec)) throw usage_error("--out: directory does not exist: " + parent.string());
+        return a;
+    } catch (const usage_error& e) {
+        return fail(e.what());
+    }
+}
+
+std::chrono::steady_clock::duration seconds(double s) {
+    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+/// The default pipeline with a calibrated camera and the chosen occlusion policy (with aabb it is
+/// exactly the pipeline certipose::precompiled instantiates).
+template <class Occlusion>
+using part_solver_for = certipose::part_solver<std::conditional_t<
+    std::is_same_v<Occlusion, certipose::aabb_occlusion>, certipose::with_camera<certipose::calibrated_camera>,
+    certipose::with_occlusion<Occlusion, certipose::with_camera<certipose::calibrated_camera>>>>;
+
+/// Runs the part and writes the folder; returns the exit code.
+template <class Occlusion>
+int run(const arguments& args, const certipose::triangle_mesh& mesh, const certipose::camera_task& input,
+        const interruption& signals) {
+    using I = certipose::boost_interval;
+    const part_solver_for<Occlusion> part(mesh, input.calibrated(), input.task);
+
+    certipose::part_options opt;
+    opt.facet.position_eps = args.position_eps;
+    opt.facet.orientation_eps = args.orientation_eps;
+    if (args.max_boxes_per_facet) opt.facet.max_boxes = *args.max_boxes_per_facet;
+    if (args.facet_time_limit) opt.facet.time_limit = seconds(*args.facet_time_limit);
+    if (args.time_limit) opt.time_limit = seconds(*args.time_limit);
+    opt.max_boxes = args.max_boxes;
+    opt.threads = args.threads;
+    opt.keep_boundary = args.boundary;
+    if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
+    opt.stop = signals.token();
+    const bool progress = show_progress(args.quiet);
+    if (progress)
+        opt.progress = [](const certipose::part_progress& p) {
+            const double rate = p.seconds > 0 ? static_cast<double>(p.facets_done) / p.seconds : 0.0;
+            std::fprintf(stderr, "\r%7zu / %zu facets  %9zu valid  %6.1f facets/s  ETA %-8s", p.facets_done,
+                         p.facets_total, p.valid, rate, duration_text(p.seconds_left).c_str());
+            return true;
+        };
+
+    fs::create_directories(args.out);
+    certipose::output_files files;
+    std::ostream& boxes = files.stream(args.out / "boxes.jsonl");
+    certipose::jsonl_sink<I> sink(boxes, certipose::checks_occlusion<Occlusion>);
+    const certipose::part_result r = part.solve(opt, sink);
+    if (progress) std::fputc('\n', stderr);
+
+    certipose::part_summary s;
+    s.mesh = {args.mesh.string(), mesh.num_faces(), args.scale};
+    certipose::describe_camera(s, part.solver().camera(), input.task);
+    s.settings.position_eps = args.position_eps;
+    s.settings.orientation_eps = args.orientation_eps;
+    s.settings.max_boxes_per_facet = opt.facet.max_boxes;
+    s.settings.time_limit_per_facet = args.facet_time_limit;
+    s.settings.time_limit = args.time_limit;
+    s.settings.boundary = args.boundary;
+    s.settings.occlusion = args.occlusion;
+    s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
+    s.facets = r.facets;
+    s.totals = {r.seconds, r.threads, 1, r.facets_selected, r.facets.size(), r.valid, r.boundary, r.skipped, r.reason,
+                signals.interrupted()};
+    files.close(args.out / "boxes.jsonl");
+    files.add(args.out / "summary.json", certipose::json_text(certipose::part_summary_to_json(s)));
+    files.commit();
+
+    if (!args.quiet) {
+        std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %zu threads: %zu valid, %zu boundary boxes, %zu facets skipped\n",
+                    args.mesh.string().c_str(), mesh.num_faces(), r.facets.size(), r.facets_selected, r.seconds, r.threads,
+                    r.valid, r.boundary, r.skipped);
+        if (r.reason != certipose::termination::completed)
+            std::printf("  stopped early: %s ended the run; the facets finished are written\n",
+                        signals.interrupted() ? interruption::name(signals.signal()) : certipose::to_string(r.reason));
+        if (!certipose::checks_occlusion<Occlusion>)
+            std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint but occlusion\n");
+        std::printf("wrote %s and %s\n", (args.out / "summary.json").string().c_str(), (args.out / "boxes.jsonl").string().c_str());
+    }
+    return signals.interrupted() ? signals.exit_code() : exit_ok;
+}
+
+int report(const std::string& message) {
+    std::cerr << "certipose-part: " << one_line(message) << "\n";
+    return exit_failure;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int code = exit_ok;
+    const auto args = parse(argc, argv, code);
+    if (!args) return code;
+    try {
+        certipose::refuse_overwriting_inputs(
+            {{"--mesh", args->mesh}, {"--camera", args->camera}},
+            {{"--out", args->out}, {"--out", args->out / "summary.json"}, {"--out", args->out / "boxes.jsonl"}});
+        const interruption signals;
+        const certipose::triangle_mesh mesh = certipose::read_mesh(args->mesh, {.scale = args->scale});
+        const certipose::camera_task input = certipose::read_camera_task(args->camera);
+        if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, signals);
+        if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, signals);
+        return run<certipose::aabb_occlusion>(*args, mesh, input, signals);
+    } catch (const certipose::error& e) {
+        return report(e.what());
+    } catch (const std::exception& e) {
+        return report(std::string("unexpected error: ") + e.what());
+    }
+}

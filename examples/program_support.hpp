@@ -1,0 +1,155 @@
+// examples/program_support.hpp — what every certipose program does the same way (not a library
+// header): exit codes, strict number parsing and the one error line, interruption by
+// SIGINT/SIGTERM through the library's cancellation, and a progress line on stderr when it is a
+// terminal.
+//
+// `interruption` installs handlers for SIGINT and SIGTERM that only record the signal (the one
+// thing a handler may safely do); a watcher thread turns it into `std::stop_source::request_stop`,
+// which the solvers poll between boxes. The program then stops computing, discards or commits its
+// outputs as its contract says (never a half-written file, no temporary left), and exits with
+// 128 + the signal (130 for SIGINT, 143 for SIGTERM). A second signal while it winds down ends the
+// process the default way.
+#pragma once
+
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <stop_token>
+#include <string>
+#include <thread>
+
+#include <unistd.h>
+
+namespace certipose_program {
+
+namespace detail {
+inline std::atomic<int> received_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may only touch lock-free atomics");
+
+extern "C" inline void record_signal(int sig) {
+    if (received_signal.exchange(sig) != 0) {  // the second one: give up winding down
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+}
+}  // namespace detail
+
+/// SIGINT/SIGTERM as a stop request (see the header comment). One per program, for its lifetime.
+class interruption {
+public:
+    interruption() {
+        detail::received_signal.store(0);
+        old_int_ = std::signal(SIGINT, detail::record_signal);
+        old_term_ = std::signal(SIGTERM, detail::record_signal);
+        watcher_ = std::jthread([this](std::stop_token done) {
+            while (!done.stop_requested()) {
+                if (detail::received_signal.load() != 0) {
+                    source_.request_stop();
+                    return;
+                }
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            }
+        });
+    }
+    interruption(const interruption&) = delete;
+    interruption& operator=(const interruption&) = delete;
+    ~interruption() {
+        watcher_.request_stop();
+        watcher_.join();
+        std::signal(SIGINT, old_int_);
+        std::signal(SIGTERM, old_term_);
+    }
+
+    std::stop_token token() const { return source_.get_token(); }
+    /// The signal received, 0 if none.
+    int signal() const noexcept { return detail::received_signal.load(); }
+    bool interrupted() const noexcept { return signal() != 0; }
+    /// 128 + the signal: the shell's convention for "killed by signal".
+    int exit_code() const noexcept { return 128 + signal(); }
+    static const char* name(int sig) noexcept { return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal"; }
+
+private:
+    std::stop_source source_;
+    using handler = void (*)(int);
+    handler old_int_ = SIG_DFL, old_term_ = SIG_DFL;
+    std::jthread watcher_;
+};
+
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_failure = 1;  ///< bad input file, solver or write error
+inline constexpr int exit_usage = 2;    ///< bad command line
+
+/// Thrown by the checks below; becomes the one error line.
+struct usage_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+inline double parse_double(const std::string& option, const std::string& text, const char* what) {
+    double v = 0.0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc{} || end != last || text.empty())
+        throw usage_error(option + ": expected " + what + ", got '" + text + "'");
+    if (!(v > 0.0) || !std::isfinite(v))
+        throw usage_error(option + ": must be " + what + ", got " + text);
+    return v;
+}
+
+inline std::size_t parse_count(const std::string& option, const std::string& text,
+                               std::size_t min) {
+    std::size_t v = 0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, v);  // decimal digits only, no sign
+    if (ec == std::errc::result_out_of_range)
+        throw usage_error(option + ": " + text + " is too large");
+    if (ec != std::errc{} || end != last || text.empty())
+        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got '" +
+                          text + "'");
+    if (v < min)
+        throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got " +
+                          text);
+    return v;
+}
+
+/// The file will be written at the end of a possibly long run: fail now if it cannot be.
+inline void check_output(const std::string& option, const std::filesystem::path& p) {
+    std::error_code ec;
+    if (!p.has_filename()) throw usage_error(option + ": not a file name: '" + p.string() + "'");
+    if (std::filesystem::is_directory(p, ec))
+        throw usage_error(option + ": " + p.string() + " is a directory");
+    const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+    if (!std::filesystem::is_directory(dir, ec))
+        throw usage_error(option + ": directory does not exist: " + dir.string());
+}
+
+inline std::string one_line(std::string s) {
+    for (char& c : s)
+        if (c == '\n' || c == '\r') c = ' ';
+    while (!s.empty() && s.back() == ' ') s.pop_back();
+    return s;
+}
+
+
+/// True when progress should be drawn: stderr is a terminal and the user did not ask for quiet.
+inline bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
+
+/// "1h02m", "3m07s", "12.3s".
+inline std::string duration_text(double s) {
+    char buf[32];
+    if (!(s >= 0.0) || s > 1e7) return "?";
+    if (s >= 3600) std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s / 3600), static_cast<int>(s / 60) % 60);
+    else if (s >= 60) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%.1fs", s);
+    return buf;
+}
+
+}  // namespace certipose_program

@@ -1,0 +1,340 @@
+// certipose/io/part_files.hpp — the output folder of a whole-part run (DESIGN.md §6, "Whole-part
+// output"): summary.json and boxes.jsonl, written and read. Needs nlohmann-json.
+//
+// boxes.jsonl has one box per line, in facet order then box order:
+//   {"facet": 17, "class": "valid", "position": [[xl,xu],[yl,yu],[zl,zu]], "orientation": [[φl,φu],[γl,γu],[βl,βu]]}
+// with bounds in shortest round-trip form (they read back to the same doubles); BOUNDARY lines
+// (only on request) also carry "undecided": "<reason>", and VALID lines of a run whose occlusion
+// was not checked carry "occlusion": "unchecked". `jsonl_sink` streams lines as facets finish,
+// so memory holds one facet's boxes at a time.
+//
+// summary.json: {"mesh": {"path", "faces", "scale"}, "camera": {as in the single-facet result},
+// "task", "settings", "facets": [{"index", "valid", "boundary", "seconds", "termination",
+// "reason" (when skipped), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
+// "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
+#pragma once
+
+#include <certipose/io/json.hpp>
+#include <certipose/io/result_document.hpp>
+#include <certipose/part/part_solver.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <istream>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace certipose {
+
+namespace detail::part_io {
+
+inline void append_bounds(std::string& out, const bounds_3d& b) {
+    out += '[';
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (i) out += ',';
+        out += '[';
+        certipose::detail::append_double(out, b[i][0]);
+        out += ',';
+        certipose::detail::append_double(out, b[i][1]);
+        out += ']';
+    }
+    out += ']';
+}
+
+}  // namespace detail::part_io
+
+/// Appends one boxes.jsonl line (with its newline). Throws invalid_argument for a box with a
+/// non-finite or empty bound (the JSON could not hold it).
+template <Interval I>
+void append_box_line(std::string& out, std::size_t facet, const classified_box<I>& b, bool occlusion_checked) {
+    const box_record r = to_record(b);
+    for (const auto* bounds : {&r.position, &r.orientation})
+        for (const auto& c : *bounds)
+            if (!std::isfinite(c[0]) || !std::isfinite(c[1]) || !(c[0] <= c[1]))
+                throw invalid_argument("box", "boxes.jsonl: facet " + std::to_string(facet) +
+                                                  " has a box with a non-finite or empty interval");
+    out += "{\"facet\":";
+    out += std::to_string(facet);
+    out += ",\"class\":\"";
+    out += to_string(r.cls);
+    out += "\",\"position\":";
+    detail::part_io::append_bounds(out, r.position);
+    out += ",\"orientation\":";
+    detail::part_io::append_bounds(out, r.orientation);
+    if (r.reason) {
+        out += ",\"undecided\":\"";
+        out += to_string(*r.reason);
+        out += '"';
+    }
+    if (r.cls == box_class::valid && !occlusion_checked) out += ",\"occlusion\":\"unchecked\"";
+    out += "}\n";
+}
+
+/// A PartSink writing boxes.jsonl lines to a stream, one facet at a time.
+template <Interval I>
+class jsonl_sink {
+public:
+    jsonl_sink(std::ostream& out, bool occlusion_checked) : out_(&out), occlusion_checked_(occlusion_checked) {}
+
+    void facet(const facet_outcome<I>& o) {
+        const certipose::detail::round_to_nearest_scope nearest;  // shortest digits need it
+        line_.clear();
+        for (const auto& b : o.boxes) append_box_line(line_, o.record.index, b, occlusion_checked_);
+        out_->write(line_.data(), static_cast<std::streamsize>(line_.size()));
+        lines_ += o.boxes.size();
+        if (!*out_) throw io_error("boxes.jsonl", "boxes.jsonl: write failed (disk full?)");
+    }
+    std::size_t lines() const noexcept { return lines_; }
+
+private:
+    std::ostream* out_;
+    bool occlusion_checked_;
+    std::string line_;
+    std::size_t lines_ = 0;
+};
+
+/// summary.json, field by field (see the header comment).
+struct part_summary {
+    struct mesh_record {
+        std::string path;
+        std::size_t faces = 0;
+        double scale = 1.0;
+    };
+    struct settings_record {
+        double position_eps = 0, orientation_eps = 0;
+        std::size_t max_boxes_per_facet = 0;
+        std::optional<double> time_limit_per_facet{};
+        std::optional<double> time_limit{};
+        bool boundary = false;
+        std::string occlusion;  ///< "aabb", "boolean", "none", or the policy's name
+        bool occlusion_checked = true;
+    };
+    struct totals_record {
+        double seconds = 0;
+        std::size_t threads = 0, ranks = 1;
+        std::size_t facets_selected = 0, facets = 0, valid = 0, boundary = 0, skipped = 0;
+        termination reason = termination::completed;
+        bool interrupted = false;  ///< a signal ended the run
+    };
+    mesh_record mesh;
+    result_document::camera_record camera;
+    result_document::task_record task;
+    settings_record settings;
+    std::vector<facet_record> facets;
+    totals_record totals;
+};
+
+inline std::optional<facet_termination> facet_termination_from_string(std::string_view s) {
+    for (auto t : {facet_termination::completed, facet_termination::box_budget, facet_termination::deadline,
+                   facet_termination::cancelled, facet_termination::skipped})
+        if (s == to_string(t)) return t;
+    return std::nullopt;
+}
+
+/// The camera and task records of a document, from the camera the run used.
+template <CameraModel C>
+void describe_camera(part_summary& s, const C& camera, const inspection_task& task) {
+    s.camera.width_px = camera.width_px();
+    s.camera.height_px = camera.height_px();
+    const Eigen::Matrix3d k = camera.intrinsics();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) s.camera.K[r][c] = k(r, c);
+    const distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
+    s.camera.d_min = range.min;
+    s.camera.d_max = range.max;
+    s.task = {task.min_view_angle, task.max_metres_per_pixel};
+}
+
+/// summary.json as JSON (keys in the documented order).
+inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
+    using namespace detail::json_io;
+    ordered_json j;
+    j["mesh"] = {{"path", s.mesh.path}, {"faces", s.mesh.faces}, {"scale", finite(s.mesh.scale, "mesh.scale")}};
+    ordered_json camera;
+    camera["width_px"] = integral_or_double(s.camera.width_px, "camera.width_px");
+    camera["height_px"] = integral_or_double(s.camera.height_px, "camera.height_px");
+    camera["K"] = matrix(s.camera.K, "camera.K");
+    camera["d_min"] = finite(s.camera.d_min, "camera.d_min");
+    camera["d_max"] = finite_or_unbounded(s.camera.d_max, "camera.d_max");
+    j["camera"] = std::move(camera);
+    j["task"] = {{"min_view_angle", finite(s.task.min_view_angle, "task.min_view_angle")},
+                 {"max_metres_per_pixel", s.task.max_metres_per_pixel
+                                              ? finite_or_unbounded(*s.task.max_metres_per_pixel, "task.max_metres_per_pixel")
+                                              : ordered_json(nullptr)}};
+    const auto optional = [](const std::optional<double>& v, const std::string& path) {
+        return v ? finite(*v, path) : ordered_json(nullptr);
+    };
+    j["settings"] = {{"position_eps", finite(s.settings.position_eps, "settings.position_eps")},
+                     {"orientation_eps", finite(s.settings.orientation_eps, "settings.orientation_eps")},
+                     {"max_boxes_per_facet", s.settings.max_boxes_per_facet},
+                     {"time_limit_per_facet", optional(s.settings.time_limit_per_facet, "settings.time_limit_per_facet")},
+                     {"time_limit", optional(s.settings.time_limit, "settings.time_limit")},
+                     {"boundary", s.settings.boundary},
+                     {"occlusion", s.settings.occlusion},
+                     {"occlusion_checked", s.settings.occlusion_checked}};
+    ordered_json facets = ordered_json::array();
+    for (const facet_record& f : s.facets) {
+        ordered_json r;
+        r["index"] = f.index;
+        r["valid"] = f.valid;
+        r["boundary"] = f.boundary;
+        r["seconds"] = finite(f.seconds, "facets.seconds");
+        r["termination"] = to_string(f.termination);
+        if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
+        if (f.boundary > 0) {
+            ordered_json reasons;
+            for (std::size_t k = 0; k < boundary_reason_count; ++k)
+                if (f.boundary_reasons[k]) reasons[std::string(to_string(static_cast<boundary_reason>(k)))] = f.boundary_reasons[k];
+            r["boundary_reasons"] = std::move(reasons);
+        }
+        facets.push_back(std::move(r));
+    }
+    j["facets"] = std::move(facets);
+    const auto& t = s.totals;
+    j["totals"] = {{"seconds", finite(t.seconds, "totals.seconds")},
+                   {"threads", t.threads},
+                   {"ranks", t.ranks},
+                   {"facets_selected", t.facets_selected},
+                   {"facets", t.facets},
+                   {"valid", t.valid},
+                   {"boundary", t.boundary},
+                   {"skipped", t.skipped},
+                   {"termination", to_string(t.reason)},
+                   {"interrupted", t.interrupted}};
+    return j;
+}
+
+/// Reads summary.json back (what part_summary_to_json writes; extra fields are ignored).
+/// Throws invalid_argument naming the JSON path of a missing or wrong field.
+inline part_summary part_summary_from_json(const nlohmann::json& j) {
+    using namespace detail::json_io;
+    const certipose::detail::round_to_nearest_scope nearest;
+    part_summary s;
+    require_object(j, "");
+    const json& mesh = require_object(require(j, "", "mesh", "an object"), "mesh");
+    s.mesh.path = as_string(require(mesh, "mesh", "path", "a string"), "mesh.path", "a string");
+    s.mesh.faces = as_count(require(mesh, "mesh", "faces", "an integer"), "mesh.faces");
+    s.mesh.scale = required_number(mesh, "mesh", "scale");
+    const json& camera = require_object(require(j, "", "camera", "an object"), "camera");
+    s.camera.width_px = required_number(camera, "camera", "width_px");
+    s.camera.height_px = required_number(camera, "camera", "height_px");
+    s.camera.K = as_matrix<3, 3>(require(camera, "camera", "K", "a 3x3 matrix"), "camera.K");
+    s.camera.d_min = required_number(camera, "camera", "d_min");
+    const json& d_max = require(camera, "camera", "d_max", "a number, or null for unbounded");
+    s.camera.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity() : as_number(d_max, "camera.d_max");
+    const json& task = require_object(require(j, "", "task", "an object"), "task");
+    s.task.min_view_angle = required_number(task, "task", "min_view_angle");
+    s.task.max_metres_per_pixel = optional_number(task, "task", "max_metres_per_pixel");
+    const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
+    s.settings.position_eps = required_number(settings, "settings", "position_eps");
+    s.settings.orientation_eps = required_number(settings, "settings", "orientation_eps");
+    if (const json* v = find(settings, "max_boxes_per_facet")) s.settings.max_boxes_per_facet = as_count(*v, "settings.max_boxes_per_facet");
+    s.settings.time_limit_per_facet = optional_number(settings, "settings", "time_limit_per_facet");
+    s.settings.time_limit = optional_number(settings, "settings", "time_limit");
+    if (const json* v = find(settings, "boundary"); v && v->is_boolean()) s.settings.boundary = v->get<bool>();
+    if (const json* v = find(settings, "occlusion"); v && v->is_string()) s.settings.occlusion = v->get<std::string>();
+    if (const json* v = find(settings, "occlusion_checked"); v && v->is_boolean()) s.settings.occlusion_checked = v->get<bool>();
+    const json& facets = require(j, "", "facets", "an array");
+    if (!facets.is_array()) fail("facets", "expected an array, got " + describe(facets));
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+        const std::string path = element("facets", i);
+        const json& f = require_object(facets[i], path);
+        facet_record r;
+        r.index = as_count(require(f, path, "index", "an integer"), child(path, "index"));
+        r.valid = as_count(require(f, path, "valid", "an integer"), child(path, "valid"));
+        r.boundary = as_count(require(f, path, "boundary", "an integer"), child(path, "boundary"));
+        r.seconds = required_number(f, path, "seconds");
+        const std::string t = as_string(require(f, path, "termination", "a string"), child(path, "termination"), "a string");
+        const auto term = facet_termination_from_string(t);
+        if (!term) fail(child(path, "termination"), "unknown termination \"" + t + "\"");
+        r.termination = *term;
+        if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
+        if (const json* reasons = find(f, "boundary_reasons")) {
+            require_object(*reasons, child(path, "boundary_reasons"));
+            for (std::size_t k = 0; k < boundary_reason_count; ++k)
+                if (const json* v = find(*reasons, to_string(static_cast<boundary_reason>(k))))
+                    r.boundary_reasons[k] = as_count(*v, child(child(path, "boundary_reasons"), to_string(static_cast<boundary_reason>(k))));
+        }
+        s.facets.push_back(std::move(r));
+    }
+    const json& totals = require_object(require(j, "", "totals", "an object"), "totals");
+    auto& t = s.totals;
+    t.seconds = required_number(totals, "totals", "seconds");
+    const auto count = [&](std::string_view key, std::size_t& out) {
+        if (const json* v = find(totals, key)) out = as_count(*v, child("totals", key));
+    };
+    count("threads", t.threads);
+    count("ranks", t.ranks);
+    count("facets_selected", t.facets_selected);
+    count("facets", t.facets);
+    count("valid", t.valid);
+    count("boundary", t.boundary);
+    count("skipped", t.skipped);
+    if (const json* v = find(totals, "termination")) {
+        const auto reason = termination_from_string(as_string(*v, "totals.termination", "a string"));
+        if (!reason) fail("totals.termination", "unknown termination");
+        t.reason = *reason;
+    }
+    if (const json* v = find(totals, "interrupted"); v && v->is_boolean()) t.interrupted = v->get<bool>();
+    return s;
+}
+
+/// Reads <dir>/summary.json. Throws io_error if it is missing or not JSON.
+inline part_summary read_part_summary(const std::filesystem::path& dir) {
+    const std::filesystem::path file = dir / "summary.json";
+    return detail::json_io::with_source(file.string(), [&] {
+        return part_summary_from_json(
+            detail::json_io::parse(detail::json_io::read_text_file(file, "read_part_summary"), file.string()));
+    });
+}
+
+/// One line of boxes.jsonl.
+struct part_box {
+    std::size_t facet = 0;
+    box_record box;
+    bool occlusion_checked = true;
+};
+
+/// Calls `visit(part_box)` for every line of `path` (a boxes.jsonl), in order, without holding
+/// the file in memory. Throws io_error(path) if it cannot be read and invalid_argument naming
+/// the line (e.g. "boxes.jsonl:12.position") for a malformed one.
+inline void read_boxes_jsonl(const std::filesystem::path& path, const std::function<void(const part_box&)>& visit) {
+    using namespace detail::json_io;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw io_error(path.string(), "read_boxes_jsonl: cannot open " + path.string());
+    const certipose::detail::round_to_nearest_scope nearest;
+    std::string line;
+    for (std::size_t n = 1; std::getline(in, line); ++n) {
+        if (line.empty()) continue;
+        const std::string where = path.filename().string() + ":" + std::to_string(n);
+        const json j = parse(line, where);
+        require_object(j, where);
+        part_box b;
+        b.facet = as_count(require(j, where, "facet", "an integer"), child(where, "facet"));
+        const std::string cls = as_string(require(j, where, "class", "\"valid\" or \"boundary\""), child(where, "class"),
+                                          "\"valid\" or \"boundary\"");
+        if (cls == "valid") b.box.cls = box_class::valid;
+        else if (cls == "boundary") b.box.cls = box_class::boundary;
+        else fail(child(where, "class"), "unknown class \"" + cls + "\"");
+        b.box.position = as_matrix<3, 2>(require(j, where, "position", "3 intervals"), child(where, "position"));
+        b.box.orientation = as_matrix<3, 2>(require(j, where, "orientation", "3 intervals"), child(where, "orientation"));
+        check_bounds(b.box.position, child(where, "position"));
+        check_bounds(b.box.orientation, child(where, "orientation"));
+        if (const json* u = find(j, "undecided")) {
+            const std::string name = as_string(*u, child(where, "undecided"), "a string");
+            b.box.reason = boundary_reason_from_string(name);
+            if (!b.box.reason) fail(child(where, "undecided"), "unknown reason \"" + name + "\"");
+        }
+        if (const json* o = find(j, "occlusion")) b.occlusion_checked = !(o->is_string() && o->get<std::string>() == "unchecked");
+        visit(b);
+    }
+    if (in.bad()) throw io_error(path.string(), "read_boxes_jsonl: read error in " + path.string());
+}
+
+}  // namespace certipose

@@ -1,0 +1,357 @@
+// certipose/part/part_solver.hpp — every facet of a part (or a selection), solved in parallel
+// with oneTBB over one shared pose_solver, and streamed to a sink in facet order.
+//
+//   certipose::part_solver<> part(mesh, camera, {.min_view_angle = 0.35});
+//   my_sink sink;                                     // sink.facet(const facet_outcome<I>&)
+//   const certipose::part_result r = part.solve({.facet = {.position_eps = 0.1}}, sink);
+//
+// One pose_solver (and so one occlusion scene) serves every facet: its `solve` is const and
+// thread-safe. Facets run as the stages of a tbb::parallel_pipeline: facet indices are issued in
+// order, solved in parallel, and handed to the sink by a serial in-order stage, so the sink sees
+// the same facets, boxes and order whatever the thread count (runs bounded by boxes, not time,
+// are deterministic), and at most `in_flight` facets' boxes exist at once: memory is bounded by
+// the threads, not by the part.
+//
+// Before paving, a facet that provably no pose can inspect is skipped with the reason
+// (`uninspectable`): the facet cannot fit in the image from any distance ≤ d_max, no position
+// satisfies the distance, backface and viewing-angle constraints, or the occlusion policy proves
+// the whole search box occluded. These are certificates, like OCCLUDED: a skipped facet would
+// have had no VALID box.
+//
+// Budgets: per facet, `facet.max_boxes` and `facet.time_limit` (a facet that hits them keeps its
+// VALID boxes, pose_solver.hpp); for the run, `max_boxes` (checked in facet order, so the set of
+// facets finished is deterministic), `time_limit`, `stop` and the progress callback (return
+// false to cancel). A run that ends early returns the facets finished before the end, in order:
+// a facet still in flight is dropped, never reported half done.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <concepts>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <span>
+#include <stop_token>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <oneapi/tbb/info.h>
+#include <oneapi/tbb/parallel_pipeline.h>
+#include <oneapi/tbb/task_arena.h>
+
+#include "certipose/error.hpp"
+#include "certipose/orientation/certify.hpp"
+#include "certipose/solver/pose_solver.hpp"
+
+namespace certipose {
+
+/// How a facet's run ended in a part run (summary.json "termination").
+enum class facet_termination : std::uint8_t { completed, box_budget, deadline, cancelled, skipped };
+
+constexpr const char* to_string(facet_termination t) noexcept {
+    switch (t) {
+        case facet_termination::completed: return "completed";
+        case facet_termination::box_budget: return "box_budget";
+        case facet_termination::deadline: return "deadline";
+        case facet_termination::cancelled: return "cancelled";
+        case facet_termination::skipped: return "skipped";
+    }
+    return "?";
+}
+
+/// What the summary keeps of one facet (boxes go to the sink, not here).
+struct facet_record {
+    std::size_t index = 0;
+    std::size_t valid = 0, boundary = 0;
+    double seconds = 0.0;
+    facet_termination termination = facet_termination::completed;
+    std::string reason;  ///< why it was skipped (empty otherwise)
+    std::array<std::size_t, boundary_reason_count> boundary_reasons{};
+};
+
+/// One finished facet as the sink receives it: its record and its boxes (VALID, and BOUNDARY
+/// when part_options::keep_boundary).
+template <Interval I>
+struct facet_outcome {
+    facet_record record;
+    std::vector<classified_box<I>> boxes;
+};
+
+/// A sink: `sink.facet(outcome)`, called in facet order from one thread at a time.
+template <class S, class I>
+concept PartSink = requires(S& s, const facet_outcome<I>& o) { s.facet(o); };
+
+/// Progress of a part run, reported after each facet.
+struct part_progress {
+    std::size_t facets_done = 0, facets_total = 0;
+    std::size_t valid = 0, boundary = 0;  ///< boxes so far
+    double seconds = 0.0;                 ///< elapsed
+    double seconds_left = 0.0;            ///< estimate: elapsed / done × (total − done)
+};
+
+/// Settings of a part run.
+struct part_options {
+    /// Per facet: ε_p, ε_o, the per-facet box budget and time limit (its progress and stop are
+    /// ignored: the run has its own).
+    solve_options facet{};
+    /// Facets to solve, in this order; empty: all of the part.
+    std::vector<std::size_t> facets{};
+    /// Worker threads; 0: every core (oneTBB's default).
+    std::size_t threads = 0;
+    /// Also hand BOUNDARY boxes to the sink.
+    bool keep_boundary = false;
+    /// Skip facets provably uninspectable before paving them (see the header comment).
+    bool skip_uninspectable = true;
+    /// Whole run: boxes processed (sum over facets, in facet order), wall time.
+    std::optional<std::size_t> max_boxes{};
+    std::optional<std::chrono::steady_clock::duration> time_limit{};
+    /// Called after each facet, from the sink's thread; return false to cancel.
+    std::function<bool(const part_progress&)> progress{};
+    std::stop_token stop{};
+    /// Facets solved or waiting for the sink at once (0: 4 per thread): bounds memory.
+    std::size_t in_flight = 0;
+};
+
+/// What a part run returns: one record per finished facet, in order, and the totals.
+struct part_result {
+    std::vector<facet_record> facets;
+    std::size_t facets_selected = 0;
+    std::size_t valid = 0, boundary = 0, skipped = 0;
+    double seconds = 0.0;
+    std::size_t threads = 0;
+    /// The most facets whose boxes existed at once (solving, or waiting for the sink): what
+    /// bounds the run's memory, at most part_options::in_flight.
+    std::size_t peak_in_flight = 0;
+    termination reason = termination::completed;  ///< why the run ended
+};
+
+/// A sink that keeps everything (small parts, tests): the outcomes in facet order.
+template <Interval I>
+struct collecting_sink {
+    std::vector<facet_outcome<I>> outcomes;
+    void facet(const facet_outcome<I>& o) { outcomes.push_back(o); }
+};
+
+/// Every facet of a part (see the header comment). The mesh must outlive the solver.
+template <class Policies = default_policies>
+class part_solver {
+public:
+    using solver_type = pose_solver<Policies>;
+    using interval_type = typename solver_type::interval_type;
+    using camera_type = typename solver_type::camera_type;
+    using setup = typename solver_type::setup;
+
+    part_solver(const triangle_mesh& part, camera_type camera, inspection_task task, setup s = {})
+        : solver_(part, std::move(camera), task, std::move(s)) {}
+    part_solver(const triangle_mesh&& part, camera_type camera, inspection_task task, setup s = {}) = delete;
+
+    const solver_type& solver() const noexcept { return solver_; }
+
+    /// Why no pose can inspect facet `f`, when that is provable cheaply; nothing otherwise.
+    std::optional<std::string> uninspectable(std::size_t f) const;
+
+    /// Solves the selected facets and hands each to `sink`, in order (see the header comment).
+    /// Throws invalid_argument for bad options and out_of_range for a facet index not in the part.
+    template <PartSink<interval_type> Sink>
+    part_result solve(const part_options& options, Sink& sink) const;
+
+private:
+    solver_type solver_;
+};
+
+template <class Policies>
+std::optional<std::string> part_solver<Policies>::uninspectable(std::size_t index) const {
+    using I = interval_type;
+    const facet& f = solver_.part().facet(index);
+    const distance_range range = solver_.range();
+    // 1. Too large for the image: two points seen from p within the circumscribed cone of
+    //    half-angle α (every ray through the image) are at most max(1, 2 sin α)·d_max apart
+    //    when both are within d_max of p (law of cosines, maximised at the ends).
+    {
+        const fov_frustum<I> frustum(solver_.camera());
+        const rounding_guard<I> rounding;
+        const double alpha = frustum.outer_half_angle();
+        const I reach = I(range.max) * (alpha >= std::numbers::pi / 2 ? I(2.0) : hull(I(1.0), I(2.0) * sin(I(alpha))));
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3;
+            const I d2 = sqr(I(f.v[a].x()) - I(f.v[b].x())) + sqr(I(f.v[a].y()) - I(f.v[b].y())) +
+                         sqr(I(f.v[a].z()) - I(f.v[b].z()));
+            if (lower(d2) > upper(sqr(reach)))
+                return "larger than the image can hold from any distance up to d_max (edge " +
+                       detail::format_double(std::sqrt(lower(d2))) + " m, at most " +
+                       detail::format_double(upper(reach)) + " m fits)";
+        }
+    }
+    // 2. No position satisfies constraints 1–4: the set contracts its search box to nothing.
+    auto set = make_constraint_set<typename solver_type::constraint_set_type>(
+        position_problem{f, range, solver_.task()}, solver_.constraints());
+    const position_box<I> box = set.initial_box();
+    if (is_empty(box)) return "no position satisfies the distance, backface and viewing-angle constraints";
+    // 3. The occlusion policy proves every sight line from the whole search box blocked.
+    if (checks_occlusion<typename solver_type::occlusion_type> &&
+        solver_.occlusion().classify(box, index) == visibility::occluded)
+        return "occluded from every position within d_max";
+    return std::nullopt;
+}
+
+template <class Policies>
+template <PartSink<typename part_solver<Policies>::interval_type> Sink>
+part_result part_solver<Policies>::solve(const part_options& options, Sink& sink) const {
+    using I = interval_type;
+    using clock = std::chrono::steady_clock;
+    options.facet.validate();
+    const std::size_t n = solver_.part().num_faces();
+    std::vector<std::size_t> selection = options.facets;
+    if (selection.empty()) {
+        selection.resize(n);
+        for (std::size_t i = 0; i < n; ++i) selection[i] = i;
+    }
+    for (std::size_t f : selection)
+        if (f >= n) throw out_of_range("facet", f, n);
+    if (options.max_boxes && *options.max_boxes == 0)
+        throw invalid_argument("max_boxes", "part_solver: the run's max_boxes must be at least 1");
+
+    const std::size_t threads =
+        options.threads ? options.threads : static_cast<std::size_t>(oneapi::tbb::info::default_concurrency());
+    const std::size_t tokens = options.in_flight ? options.in_flight : 4 * threads;
+    const auto start = clock::now();
+    std::optional<clock::time_point> deadline;
+    if (options.time_limit) deadline = start + *options.time_limit;
+    const auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+
+    // Stopping: the user's token, the progress callback, the run's budgets. Facets already in
+    // flight see the stop through their own token and are dropped, not reported.
+    std::stop_source halt;
+    std::stop_callback forward(options.stop, [&] { halt.request_stop(); });
+    std::atomic<int> why{static_cast<int>(termination::completed)};
+    const auto stop_run = [&](termination t) {
+        int expected = static_cast<int>(termination::completed);
+        why.compare_exchange_strong(expected, static_cast<int>(t));
+        halt.request_stop();
+    };
+
+    struct item {
+        std::size_t index = 0;
+        bool dropped = false;
+        facet_outcome<I> outcome;
+    };
+
+    std::atomic<std::size_t> live{0}, peak{0};
+    const auto enter = [&] {
+        const std::size_t now = ++live;
+        for (std::size_t p = peak.load(); now > p && !peak.compare_exchange_weak(p, now);) {}
+    };
+
+    part_result out;
+    out.facets_selected = selection.size();
+    out.threads = threads;
+    out.facets.reserve(selection.size());
+    std::size_t next = 0, boxes_total = 0;
+
+    oneapi::tbb::task_arena arena(static_cast<int>(threads));
+    arena.execute([&] {
+        oneapi::tbb::parallel_pipeline(
+            tokens,
+            oneapi::tbb::make_filter<void, std::size_t>(
+                oneapi::tbb::filter_mode::serial_in_order,
+                [&](oneapi::tbb::flow_control& fc) -> std::size_t {
+                    if (next >= selection.size() || halt.stop_requested()) {
+                        fc.stop();
+                        return 0;
+                    }
+                    if (deadline && clock::now() >= *deadline) {
+                        stop_run(termination::deadline);
+                        fc.stop();
+                        return 0;
+                    }
+                    return selection[next++];
+                }) &
+                oneapi::tbb::make_filter<std::size_t, item>(
+                    oneapi::tbb::filter_mode::parallel,
+                    [&](std::size_t f) {
+                        enter();
+                        item it;
+                        it.index = f;
+                        facet_record& rec = it.outcome.record;
+                        rec.index = f;
+                        const auto t0 = clock::now();
+                        if (halt.stop_requested()) {
+                            it.dropped = true;
+                            return it;
+                        }
+                        if (options.skip_uninspectable) {
+                            if (auto reason = uninspectable(f)) {
+                                rec.termination = facet_termination::skipped;
+                                rec.reason = std::move(*reason);
+                                rec.seconds = std::chrono::duration<double>(clock::now() - t0).count();
+                                return it;
+                            }
+                        }
+                        solve_options fo = options.facet;
+                        fo.progress = {};
+                        fo.stop = halt.get_token();
+                        if (deadline) {
+                            const auto left = *deadline - clock::now();
+                            if (!fo.time_limit || left < *fo.time_limit) fo.time_limit = std::max(left, clock::duration(1));
+                        }
+                        auto r = solver_.solve(f, fo);
+                        // Cut short by the run (its stop, or its deadline rather than the facet's
+                        // own): dropped, never reported half done.
+                        if (r.stats.reason == termination::cancelled ||
+                            (r.stats.reason == termination::deadline && deadline && clock::now() >= *deadline)) {
+                            it.dropped = true;
+                            return it;
+                        }
+                        rec.seconds = r.stats.seconds;
+                        rec.valid = r.stats.valid;
+                        rec.boundary = r.stats.boundary;
+                        rec.boundary_reasons = r.stats.boundary_reasons;
+                        rec.termination = r.stats.reason == termination::box_budget ? facet_termination::box_budget
+                                          : r.stats.reason == termination::deadline ? facet_termination::deadline
+                                                                                    : facet_termination::completed;
+                        it.outcome.boxes.reserve(options.keep_boundary ? r.boxes.size() : r.stats.valid);
+                        for (auto& b : r.boxes)
+                            if (b.cls == box_class::valid || options.keep_boundary) it.outcome.boxes.push_back(std::move(b));
+                        return it;
+                    }) &
+                oneapi::tbb::make_filter<item, void>(oneapi::tbb::filter_mode::serial_in_order, [&](item it) {
+                    struct leave_t {
+                        std::atomic<std::size_t>& n;
+                        ~leave_t() { --n; }
+                    } leave{live};
+                    if (it.dropped || halt.stop_requested()) return;  // in order: nothing after a dropped facet
+                    const facet_record& rec = it.outcome.record;
+                    sink.facet(std::as_const(it.outcome));
+                    out.valid += rec.valid;
+                    out.boundary += rec.boundary;
+                    out.skipped += rec.termination == facet_termination::skipped;
+                    out.facets.push_back(rec);
+                    boxes_total += rec.valid + rec.boundary;
+                    if (options.max_boxes && boxes_total >= *options.max_boxes &&
+                        out.facets.size() < selection.size())
+                        stop_run(termination::box_budget);
+                    if (options.progress) {
+                        const double s = elapsed();
+                        const std::size_t done = out.facets.size();
+                        const part_progress p{done, selection.size(), out.valid, out.boundary, s,
+                                              done ? s / static_cast<double>(done) *
+                                                         static_cast<double>(selection.size() - done)
+                                                   : 0.0};
+                        if (!options.progress(p)) stop_run(termination::cancelled);
+                    }
+                }));
+    });
+    if (halt.stop_requested() && why.load() == static_cast<int>(termination::completed))
+        why.store(static_cast<int>(termination::cancelled));  // the user's stop token
+    out.reason = out.facets.size() == selection.size() ? termination::completed : static_cast<termination>(why.load());
+    out.seconds = elapsed();
+    out.peak_in_flight = peak.load();
+    return out;
+}
+
+}  // namespace certipose

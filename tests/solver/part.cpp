@@ -1,0 +1,239 @@
+// The whole-part solver (part/part_solver.hpp): deterministic across thread counts, memory
+// bounded by the facets in flight, cancellation that keeps exactly the finished facets, budgets
+// that keep certified boxes, sound skips, and the sampling check over many facets of real meshes.
+#include "solver_support.hpp"
+
+#include <certipose/part/part_solver.hpp>
+#include <certipose/part/selection.hpp>
+
+#include <numeric>
+
+using namespace solver_test;
+
+namespace {
+
+const thin_lens_camera& camera() {
+    static const thin_lens_camera c(design_camera_parameters());
+    return c;
+}
+
+part_options options_for(std::vector<std::size_t> facets, std::size_t threads) {
+    part_options o;
+    o.facet = {.position_eps = 0.1, .orientation_eps = 0.38};
+    o.facets = std::move(facets);
+    o.threads = threads;
+    return o;
+}
+
+std::vector<std::size_t> every(std::size_t step, std::size_t n, std::size_t first = 0) {
+    std::vector<std::size_t> v;
+    for (std::size_t f = first; f < n; f += step) v.push_back(f);
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("part: the same facets, boxes and order with 1, 2 and 4 threads") {
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    const auto facets = every(97, part().mesh.num_faces(), 5);
+    std::vector<collecting_sink<boost_interval>> runs(3);
+    std::vector<part_result> results;
+    for (std::size_t k = 0; k < 3; ++k) {
+        auto o = options_for(facets, std::size_t{1} << k);
+        o.keep_boundary = true;
+        results.push_back(whole.solve(o, runs[k]));
+    }
+    REQUIRE(runs[0].outcomes.size() == facets.size());
+    for (std::size_t k = 1; k < 3; ++k) {
+        CAPTURE(k);
+        CHECK(results[k].reason == termination::completed);
+        REQUIRE(runs[k].outcomes.size() == runs[0].outcomes.size());
+        for (std::size_t i = 0; i < facets.size(); ++i) {
+            const auto& a = runs[0].outcomes[i];
+            const auto& b = runs[k].outcomes[i];
+            CHECK(a.record.index == facets[i]);
+            CHECK(b.record.index == facets[i]);
+            REQUIRE(a.boxes.size() == b.boxes.size());
+            for (std::size_t j = 0; j < a.boxes.size(); ++j) {
+                CHECK(a.boxes[j].cls == b.boxes[j].cls);
+                CHECK(a.boxes[j].reason == b.boxes[j].reason);
+                for (std::size_t d = 0; d < 3; ++d) {
+                    CHECK(lower(a.boxes[j].box.position[d]) == lower(b.boxes[j].box.position[d]));
+                    CHECK(upper(a.boxes[j].box.position[d]) == upper(b.boxes[j].box.position[d]));
+                    CHECK(lower(a.boxes[j].box.orientation[d]) == lower(b.boxes[j].box.orientation[d]));
+                    CHECK(upper(a.boxes[j].box.orientation[d]) == upper(b.boxes[j].box.orientation[d]));
+                }
+            }
+        }
+    }
+    // The part run gives each facet exactly what the single-facet solver gives it.
+    const auto single = whole.solver().solve(facets[3], options_for({}, 1).facet);
+    CHECK(runs[2].outcomes[3].boxes.size() == single.boxes.size());
+    CHECK(runs[2].outcomes[3].record.valid == single.stats.valid);
+}
+
+TEST_CASE("part: boxes stream to the sink; at most in_flight facets exist at once") {
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    struct counting_sink {
+        std::size_t facets = 0, boxes = 0, last = 0;
+        bool ordered = true;
+        void facet(const facet_outcome<boost_interval>& o) {
+            ordered = ordered && (facets == 0 || o.record.index > last);
+            last = o.record.index;
+            ++facets;
+            boxes += o.boxes.size();
+        }
+    } sink;
+    auto o = options_for(every(23, part().mesh.num_faces()), 2);
+    o.keep_boundary = true;
+    o.in_flight = 3;
+    const auto r = whole.solve(o, sink);
+    CHECK(sink.ordered);
+    CHECK(sink.facets == o.facets.size());
+    CHECK(sink.boxes == r.valid + r.boundary);
+    CHECK(sink.boxes > 50 * sink.facets);  // many boxes went by ...
+    CHECK(r.peak_in_flight >= 1);
+    CHECK(r.peak_in_flight <= 3);  // ... but never more than three facets' worth at once
+}
+
+TEST_CASE("part: cancellation returns exactly the finished facets, as the full run has them") {
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    const auto facets = every(41, part().mesh.num_faces(), 3);
+    collecting_sink<boost_interval> full_sink, cut_sink;
+    const auto full = whole.solve(options_for(facets, 2), full_sink);
+    REQUIRE(full.reason == termination::completed);
+    auto o = options_for(facets, 2);
+    o.progress = [](const part_progress& p) {
+        CHECK(p.facets_total > 0);
+        CHECK(p.seconds >= 0.0);
+        return p.facets_done < 5;
+    };
+    const auto cut = whole.solve(o, cut_sink);
+    CHECK(cut.reason == termination::cancelled);
+    REQUIRE(cut.facets.size() == 5);
+    REQUIRE(cut_sink.outcomes.size() == 5);
+    for (std::size_t i = 0; i < 5; ++i) {
+        CHECK(cut.facets[i].index == facets[i]);
+        CHECK(cut.facets[i].termination == facet_termination::completed);
+        CHECK(cut_sink.outcomes[i].record.valid == full_sink.outcomes[i].record.valid);
+        CHECK(cut_sink.outcomes[i].boxes.size() == full_sink.outcomes[i].boxes.size());
+    }
+    // A stop requested before the run finishes nothing.
+    std::stop_source stop;
+    stop.request_stop();
+    auto stopped = options_for(facets, 2);
+    stopped.stop = stop.get_token();
+    collecting_sink<boost_interval> none;
+    const auto nothing = whole.solve(stopped, none);
+    CHECK(nothing.facets.empty());
+    CHECK(nothing.reason == termination::cancelled);
+    // The run's box budget ends it after a deterministic prefix of facets.
+    auto budget = options_for(facets, 2);
+    budget.max_boxes = full.facets[0].valid + full.facets[0].boundary + 1;
+    collecting_sink<boost_interval> two;
+    const auto short_run = whole.solve(budget, two);
+    CHECK(short_run.reason == termination::box_budget);
+    CHECK(short_run.facets.size() == 2);
+}
+
+TEST_CASE("part: a facet that hits its budget keeps its certified VALID boxes, and they are sound") {
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    auto o = options_for({part().facet_of_interest, 120, 1500}, 2);
+    o.facet.max_boxes = 400;
+    collecting_sink<boost_interval> sink;
+    const auto r = whole.solve(o, sink);
+    REQUIRE(sink.outcomes.size() == 3);
+    std::size_t budget_hits = 0;
+    for (const auto& out : sink.outcomes) {
+        if (out.record.termination != facet_termination::box_budget) continue;
+        ++budget_hits;
+        CHECK(out.record.valid > 0);
+        CHECK(out.record.boundary_reasons[static_cast<std::size_t>(boundary_reason::budget)] > 0);
+        solve_result<boost_interval> as_result;
+        as_result.facet_index = out.record.index;
+        as_result.boxes = out.boxes;
+        as_result.stats.valid = out.record.valid;
+        const auto rep = check_valid_boxes(as_result, part().mesh, camera(), whole.solver().range(), 0.35, 20, 31);
+        CHECK(rep.samples >= 20 * out.record.valid);
+        CHECK(rep.violations == 0);
+    }
+    CHECK(budget_hits >= 1);
+    CHECK(r.valid > 0);
+}
+
+TEST_CASE("part: facets no pose can inspect are skipped with the reason, and the solver agrees") {
+    // A cube with 1.5 m edges: no face fits the DESIGN.md camera's image from within d_max = 0.77 m.
+    std::vector<Eigen::Vector3d> v;
+    for (int k = 0; k < 8; ++k) v.emplace_back(k & 1 ? 1.5 : 0.0, k & 2 ? 1.5 : 0.0, k & 4 ? 1.5 : 0.0);
+    const triangle_mesh cube(v, {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}});
+    const part_solver<with_occlusion<no_occlusion>> whole(cube, camera(), {.min_view_angle = 0.35});
+    std::size_t skipped = 0, checked = 0;
+    for (std::size_t f = 0; f < cube.num_faces(); ++f) {
+        const auto why = whole.uninspectable(f);
+        if (!why) continue;
+        ++skipped;
+        CHECK(why->find("larger than the image") != std::string::npos);
+        if (checked < 5) {
+            ++checked;
+            CHECK(whole.solver().solve(f, {.position_eps = 0.1, .orientation_eps = 0.38}).stats.valid == 0);
+        }
+    }
+    CHECK(skipped == cube.num_faces());
+    collecting_sink<boost_interval> sink;
+    const auto r = whole.solve(options_for({}, 2), sink);
+    CHECK(r.skipped == skipped);
+    for (const auto& rec : r.facets)
+        if (rec.termination == facet_termination::skipped) {
+            CHECK_FALSE(rec.reason.empty());
+            CHECK(rec.valid == 0);
+        }
+    // The case-study facet is inspectable: it must not be skipped.
+    const part_solver<> sample(part().mesh, camera(), {.min_view_angle = 0.35});
+    CHECK_FALSE(sample.uninspectable(part().facet_of_interest));
+}
+
+TEST_CASE("part: facet selections parse and name what is wrong") {
+    CHECK(parse_facet_selection("0,5,17-19,5", 100) == std::vector<std::size_t>{0, 5, 17, 18, 19});
+    CHECK_THROWS_AS(parse_facet_selection("", 10), certipose::invalid_argument);
+    CHECK_THROWS_AS(parse_facet_selection("3-1", 10), certipose::invalid_argument);
+    CHECK_THROWS_AS(parse_facet_selection("1,x", 10), certipose::invalid_argument);
+    try {
+        (void)parse_facet_selection("2,10", 10);
+        FAIL("an index out of range was accepted");
+    } catch (const certipose::invalid_argument& e) {
+        CHECK(std::string(e.what()).find("facet 10 is out of range") != std::string::npos);
+    }
+}
+
+TEST_CASE("part: sampled poses in the VALID boxes of 50+ random facets of two real meshes are valid") {
+    for (const char* name : {"idler_riser.off", "angle_block.off"}) {
+        CAPTURE(name);
+        const triangle_mesh mesh = rescaled_to_diagonal(read_mesh(std::string(CERTIPOSE_SHARED_MESHES) + "/" + name), 0.3);
+        const part_solver<> whole(mesh, camera(), {.min_view_angle = 0.35});
+        std::mt19937 rng(77);
+        std::vector<std::size_t> facets(mesh.num_faces());
+        std::iota(facets.begin(), facets.end(), 0);
+        std::shuffle(facets.begin(), facets.end(), rng);
+        facets.resize(50);
+        collecting_sink<boost_interval> sink;
+        const auto r = whole.solve(options_for(facets, 2), sink);
+        REQUIRE(r.facets.size() == 50);
+        std::size_t samples = 0, violations = 0, with_valid = 0;
+        for (const auto& out : sink.outcomes) {
+            if (out.boxes.empty()) continue;
+            ++with_valid;
+            solve_result<boost_interval> as_result;
+            as_result.facet_index = out.record.index;
+            as_result.boxes = out.boxes;
+            const auto rep = check_valid_boxes(as_result, mesh, camera(), whole.solver().range(), 0.35, 3, 40);
+            samples += rep.samples;
+            violations += rep.violations;
+        }
+        MESSAGE(std::string(name) << ": 50 facets, " << with_valid << " with VALID boxes, " << r.skipped << " skipped, " << samples
+                     << " sampled poses, " << violations << " violations");
+        CHECK(with_valid >= 10);
+        CHECK(samples >= 1000);
+        CHECK(violations == 0);
+    }
+}
