@@ -1,5 +1,5 @@
 // docs/camera.md — the DESIGN.md camera: K, FOV half-angles and the in-focus range.
-#include <certipose/camera.hpp>
+#include <certipose/certipose.hpp>  // or just <certipose/camera.hpp>
 
 #include <cstdio>
 #include <numbers>

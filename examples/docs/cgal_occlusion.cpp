@@ -1,8 +1,5 @@
 // docs/occlusion.md: classify the paper's Figure 5 box against every facet of the sample part.
-#include <certipose/geometry/sample_part.hpp>
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
-#include <certipose/occlusion/cgal_boolean_occlusion.hpp>
+#include <certipose/cgal.hpp>
 
 #include <array>
 #include <cstddef>
@@ -11,6 +8,9 @@
 int main() {
     using namespace certipose;
     using I = boost_interval;
+    static_assert(OcclusionPolicy<aabb_occlusion, I> && OcclusionPolicy<boolean_occlusion, I> &&
+                  OcclusionPolicy<no_occlusion, I>);
+    static_assert(checks_occlusion<aabb_occlusion> && !checks_occlusion<no_occlusion>);  // no_occlusion: unchecked
     const sample_part part = make_sample_part();
 
     // Built once per scene (validates the part as a closed solid, caches the AABB tree / an

@@ -1,50 +1,57 @@
-// docs/constraints.md: a user-written position constraint set ("keep the camera above a guard
-// plane z >= 0.4 m") combined with the paper's set and paved for the sample part's facet.
-#include <certipose/camera.hpp>
-#include <certipose/constraints/paper_position_constraints.hpp>
-#include <certipose/geometry/sample_part.hpp>
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/occlusion/no_occlusion.hpp>
-#include <certipose/solver/position_stage.hpp>
+// docs/constraints.md: the position problem of one facet, the paper's constraint set on its own,
+// and a set with run-time parameters (keep_in_sphere) combined with it and paved for the
+// sample part's facet of interest — the position stage alone, no CGAL.
+#include <certipose/certipose.hpp>
 
 #include <cstdio>
-#include <limits>
+#include <string>
+#include <type_traits>
 
-// A constraint set is a class template over the interval type, built from the facet's
-// position_problem, with a sound contract() and a three-valued test().
+// The paper's set plus "the camera stays within a robot's reach" (a ball given at run time).
 template <class I>
-struct above_guard {
-    static constexpr double height = 0.4;  // metres
-
-    explicit above_guard(const certipose::position_problem&) {}
-
-    // Never removes a position with z >= height.
-    void contract(certipose::position_box<I>& box) {
-        const certipose::rounding_guard<I> rounding;
-        box[2] = certipose::intersect(box[2], I(height, std::numeric_limits<double>::infinity()));
-    }
-    // satisfied: every position of the box is above; violated: none is.
-    certipose::verdict test(const certipose::position_box<I>& box) const {
-        if (certipose::lower(box[2]) >= height) return certipose::verdict::satisfied;
-        if (certipose::upper(box[2]) < height) return certipose::verdict::violated;
-        return certipose::verdict::undecided;
-    }
-};
+using reachable = certipose::all_of<certipose::paper_position_constraints<I>, certipose::keep_in_sphere<I>>;
 
 int main() {
     using I = certipose::boost_interval;
-    using constraints = certipose::all_of<certipose::paper_position_constraints<I>, above_guard<I>>;
-    static_assert(certipose::PositionConstraintSet<constraints, I>);
-
     const auto part = certipose::make_sample_part();
     const certipose::thin_lens_camera camera(certipose::thin_lens_parameters{
         .focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
         .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048});
-    const certipose::position_problem problem{part.mesh.facet(part.facet_of_interest), camera.distance_range(),
-                                              certipose::inspection_task{.min_view_angle = 0.35}};
+
+    // What a set is built from, for one facet (the solver makes one per facet it solves).
+    const certipose::position_problem problem{.facet = part.mesh.facet(part.facet_of_interest),
+                                              .range = camera.distance_range(),  // [d_min, d_max]
+                                              .task = {.min_view_angle = 0.35}};
+    std::printf("facet centroid (%.4f, %.4f, %.4f), area %.3g m^2; d in [%.4f, %.4f] m; theta_v %.2f rad\n",
+                problem.facet.centroid.x(), problem.facet.centroid.y(), problem.facet.centroid.z(),
+                problem.facet.area, problem.range.min, problem.range.max, problem.task.min_view_angle);
+
+    // The paper's set on its own: the initial search box, then a verdict on one box and, when
+    // it cannot decide, which constraint it could not certify.
+    certipose::paper_position_constraints<I> paper(problem);
+    const certipose::position_box<I> start = paper.initial_box();
+    std::printf("initial box x [%.3f, %.3f] y [%.3f, %.3f] z [%.3f, %.3f]\n", certipose::lower(start[0]),
+                certipose::upper(start[0]), certipose::lower(start[1]), certipose::upper(start[1]),
+                certipose::lower(start[2]), certipose::upper(start[2]));
+    const auto above = certipose::position_box<I>::from_bounds({{{-0.05, 0.05}, {-0.05, 0.05}, {0.5, 0.6}}});
+    const auto why = paper.undecided(above);
+    std::printf("box above the facet: %s\n", why ? std::string(certipose::to_string(*why)).c_str() : "certified");
+
+    // A set with parameters: all_of's hold each member's, in order (no_parameters for the paper's).
+    static_assert(std::is_same_v<certipose::constraint_parameters_t<certipose::paper_position_constraints<I>>,
+                                 certipose::no_parameters>);
+    const certipose::keep_in_sphere<I>::parameters sphere{.centre = Eigen::Vector3d(0.0, 0.0, 0.65), .radius = 0.2};
+    const reachable<I>::parameters parameters{{}, sphere};
+
+    // The position stage alone (Algorithm 3 lines 1–27), here without occlusion.
     const certipose::no_occlusion occlusion(part.mesh);
-    const auto result = certipose::pave_positions<I, constraints>(problem, part.facet_of_interest, occlusion,
-                                                                  certipose::paver_options{}, /*ε_p=*/0.1);
-    std::printf("%zu VALID and %zu BOUNDARY position boxes, all above z = %.1f m\n", result.boxes.valid.size(),
-                result.boxes.boundary.size(), above_guard<I>::height);
+    const auto anywhere = certipose::pave_positions<I, certipose::paper_position_constraints<I>>(
+        problem, part.facet_of_interest, occlusion, {}, /*ε_p=*/0.1);
+    const auto within = certipose::pave_positions<I, reachable<I>>(problem, part.facet_of_interest, occlusion, {},
+                                                                   /*ε_p=*/0.1, {}, parameters);
+    std::size_t by_sphere = 0;  // keep_in_sphere does not say which of its constraints: `constraint`
+    for (const auto r : within.boundary_reasons) by_sphere += r == certipose::boundary_reason::constraint;
+    std::printf("VALID position boxes: %zu anywhere, %zu within %.1f m of the base (%zu BOUNDARY on the sphere)\n",
+                anywhere.boxes.valid.size(), within.boxes.valid.size(), sphere.radius, by_sphere);
+    return within.boxes.valid.size() > 0 && within.boxes.valid.size() < anywhere.boxes.valid.size() ? 0 : 1;
 }

@@ -1,6 +1,5 @@
 // docs/contractors.md: writing and composing contractors.
-#include <certipose/contractors.hpp>
-#include <certipose/interval/boost_interval.hpp>
+#include <certipose/certipose.hpp>  // or <certipose/contractors.hpp> + an interval backend
 
 #include <cstdio>
 #include <limits>
@@ -42,6 +41,13 @@ int main() {
     box b = start;
     hc4(shell).contract(b);  // one HC4 contraction
     print("hc4(shell):", b);
+
+    // Every name is also reachable qualified, without `using namespace` or ADL.
+    const auto half_space = certipose::dot(certipose::vec(x, y, z), certipose::vec(1.0, 1.0, 0.0)) <= 2.8;
+    const auto shell_q = certipose::in(certipose::sqr(x - 1.0) + certipose::sqr(y - 2.0) + certipose::sqr(z - 0.5), 0.09, 0.25);
+    b = start;
+    certipose::hc4(shell_q, half_space).contract(b);
+    print("hc4(shell, x + y <= 2.8):", b);
 
     // Compose at compile time: sequence with &, repeat with fixpoint. No virtual call anywhere.
     auto pipeline = fixpoint(above_table{0.6} & hc4(expanded) & acid(hc4(expanded)), 1e-3);

@@ -1,6 +1,5 @@
 // docs/geometry.md — build the sample part, check it, and look at its facet of interest.
-#include <certipose/geometry/sample_part.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
+#include <certipose/certipose.hpp>
 
 #include <cstdio>
 

@@ -1,8 +1,6 @@
 // docs/intervals.md — interval arithmetic with the rounding mode held, named comparisons, the
 // empty set, boxes and Eigen.
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/interval/eigen.hpp>
-#include <certipose/pose/interval_box.hpp>
+#include <certipose/certipose.hpp>
 
 #include <cstdio>
 

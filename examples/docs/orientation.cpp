@@ -1,11 +1,7 @@
 // docs/orientation.md — certified aims for one position box: certify_fov on a hand-made box,
 // the default policy (paper §6.4 + certification) and the paving policy, then a user-side
 // check of a few sampled poses.
-#include <certipose/camera/thin_lens_camera.hpp>
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/orientation/certify.hpp>
-#include <certipose/orientation/paper_orientation.hpp>
-#include <certipose/orientation/paving_orientation.hpp>
+#include <certipose/certipose.hpp>
 
 #include <cstdio>
 

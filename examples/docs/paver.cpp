@@ -1,12 +1,7 @@
 // docs/paver.md — paving the spherical shell (x−1)² + (y−2)² + (z−0.5)² ∈ [0.09, 0.25] with the
 // paper's Algorithm 1: HC4 outer contractor, a proof-of-inclusion inner contractor,
 // largest-first bisection, depth-first; then budgets, progress, cancellation and the tree.
-#include <certipose/bisection/largest_first.hpp>
-#include <certipose/bisection/round_robin.hpp>
-#include <certipose/contractors.hpp>
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/paver/paver.hpp>
-#include <certipose/pose/interval_box.hpp>
+#include <certipose/certipose.hpp>
 
 #include <chrono>
 #include <cstdio>

@@ -1,8 +1,6 @@
 // docs/poses.md — the ZXZ rotation, the nominal aim at a facet and the projection of its
 // vertices, for one pose and for a whole pose box.
-#include <certipose/interval/boost_interval.hpp>
-#include <certipose/pose/pose_box.hpp>
-#include <certipose/pose/rotation.hpp>
+#include <certipose/certipose.hpp>
 
 #include <cstdio>
 

@@ -7,8 +7,10 @@
 //
 // Compile time: header-only, a translation unit that runs the default pipeline parses CGAL and
 // compiles the pipeline itself. Linking `certipose::precompiled` instead of `certipose::cgal`
-// defines CERTIPOSE_PRECOMPILED: this header then declares the CGAL facilities without parsing
-// CGAL, and the default pipelines are compiled once, in that library (detail/precompiled.hpp).
+// defines CERTIPOSE_PRECOMPILED: this header then declares the occlusion policies and read_mesh
+// without parsing their CGAL code (kernels, AABB tree, corefinement, readers; only the small
+// CGAL/Interval_nt.h of cgal_interval remains), and the default pipelines are compiled once, in
+// that library (detail/precompiled.hpp).
 #pragma once
 
 #include "certipose/certipose.hpp"

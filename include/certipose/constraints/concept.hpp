@@ -32,8 +32,10 @@ struct position_problem {
     inspection_task task;    ///< θ_v and the resolution requirement
 };
 
-/// Why a BOUNDARY box was left undecided: the first constraint (DESIGN.md §3) that could be
-/// proven neither true nor false over the whole box, or the budget that ended the run first.
+/// Why a BOUNDARY box was left undecided: a constraint (DESIGN.md §3) that could be proven
+/// neither true nor false over the whole box — the first one the set checks that way (the
+/// paper's set: backface, viewing angle, d_max, facet contact, d_min) — or the budget that ended
+/// the run first.
 enum class boundary_reason : std::uint8_t {
     facet_contact,  ///< constraint 1: the box may touch the facet
     distance,       ///< constraint 2: d_min ≤ ‖p − q‖ ≤ d_max undecided (focus, resolution)
@@ -104,6 +106,13 @@ S make_constraint_set(const position_problem& problem, const constraint_paramete
 template <class C, class I>
 concept PositionConstraintSet = Interval<I> && Contractor<C, position_box<I>> && BoxTest<C, position_box<I>> &&
                                 ConstructibleConstraintSet<C>;
+
+/// The set the solver paves with: a PositionConstraintSet that also gives the initial search
+/// box (Algorithm 3 line 4). Members of an all_of after the first need not.
+template <class C, class I>
+concept SearchableConstraintSet = PositionConstraintSet<C, I> && requires(C& c) {
+    { c.initial_box() } -> std::convertible_to<position_box<I>>;
+};
 
 /// A set that names the first of its constraints it cannot certify on a box: `undecided(box)`
 /// is that constraint, or nothing when the set certifies the whole box (test: satisfied).

@@ -15,7 +15,7 @@
 // | member           | concept                              | default                         |
 // | interval         | Interval                             | boost_interval                  |
 // | camera           | CameraModel                          | thin_lens_camera                |
-// | constraints<I>   | PositionConstraintSet                | paper_position_constraints<I>   |
+// | constraints<I>   | SearchableConstraintSet              | paper_position_constraints<I>   |
 // | contraction      | ContractionPolicy                    | contraction::hc4                |
 // | bisector         | PositionBisector                     | largest_first                   |
 // | occlusion        | OcclusionPolicy                      | aabb_occlusion (needs CGAL)     |
@@ -84,7 +84,7 @@ struct with_camera : Base {
 /// Base's policies with the position constraint set S<I> (S a class template over the interval
 /// type, e.g. an alias template of an all_of).
 template <template <class> class S, class Base = default_policies>
-    requires PositionConstraintSet<S<typename Base::interval>, typename Base::interval>
+    requires SearchableConstraintSet<S<typename Base::interval>, typename Base::interval>
 struct with_constraints : Base {
     template <class I>
     using constraints = S<I>;

@@ -85,9 +85,10 @@ private:
     // first error names the policy and the concept it misses.
     static_assert(Interval<I>, "certipose::pose_solver: Policies::interval must model certipose::Interval");
     static_assert(CameraModel<camera_type>, "certipose::pose_solver: Policies::camera must model certipose::CameraModel");
-    static_assert(PositionConstraintSet<constraint_set_type, I>,
-                  "certipose::pose_solver: Policies::constraints<I> must model certipose::PositionConstraintSet "
-                  "(contract(box), test(box) -> verdict, built from a position_problem [and its parameters])");
+    static_assert(SearchableConstraintSet<constraint_set_type, I>,
+                  "certipose::pose_solver: Policies::constraints<I> must model certipose::SearchableConstraintSet "
+                  "(contract(box), test(box) -> verdict, initial_box(), built from a position_problem [and its "
+                  "parameters])");
     static_assert(ContractionPolicy<contraction_type, I>,
                   "certipose::pose_solver: Policies::contraction must model certipose::ContractionPolicy "
                   "(static wrap(contractor) -> Contractor; e.g. certipose::contraction::hc4)");

@@ -72,7 +72,7 @@ struct position_stage_result {
 /// `Bisector` is constructible from ε_p.
 template <Interval I, class Set, class Contraction = contraction::hc4, class Bisector = largest_first,
           class Buffer = depth_first, class Occlusion>
-    requires PositionConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
+    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
 position_stage_result<I> pave_positions(const position_problem& problem, std::size_t facet_index,
                                         const Occlusion& occlusion, const paver_options& options,
                                         double position_eps, std::stop_token stop = {},

@@ -42,7 +42,7 @@ struct inspection_task {
 /// Progress report passed to the callback.
 struct solve_progress {
     const char* stage;          ///< "position" or "orientation"
-    std::size_t boxes_done;     ///< boxes classified so far in this stage
+    std::size_t boxes_done;     ///< boxes processed so far in the run (the orientation stage goes on counting)
     std::size_t boxes_pending;  ///< boxes still waiting in this stage
     std::size_t valid;          ///< VALID boxes so far
     std::size_t boundary;       ///< BOUNDARY boxes so far

@@ -1,0 +1,86 @@
+// The documentation cannot rot: every ```cpp block of docs/*.md and README.md is an excerpt —
+// a run of consecutive lines, indentation aside — of a program compiled in the build
+// (examples/*.cpp, examples/docs/*.cpp). So a snippet that does not compile, or drifts from
+// the code, fails here.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines_of(const fs::path& p) {
+    std::ifstream in(p);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+}
+
+std::string trimmed(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t");
+    if (b == std::string::npos) return {};
+    const auto e = s.find_last_not_of(" \t\r");
+    return s.substr(b, e - b + 1);
+}
+
+struct snippet {
+    std::string where;
+    std::vector<std::string> lines;  // trimmed, blank lines at both ends removed
+};
+
+std::vector<snippet> cpp_snippets(const fs::path& md) {
+    std::vector<snippet> out;
+    const auto lines = lines_of(md);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (trimmed(lines[i]) != "```cpp") continue;
+        snippet s{md.filename().string() + ":" + std::to_string(i + 1), {}};
+        for (++i; i < lines.size() && trimmed(lines[i]) != "```"; ++i) s.lines.push_back(trimmed(lines[i]));
+        while (!s.lines.empty() && s.lines.back().empty()) s.lines.pop_back();
+        while (!s.lines.empty() && s.lines.front().empty()) s.lines.erase(s.lines.begin());
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+bool contains_run(const std::vector<std::string>& file, const std::vector<std::string>& run) {
+    if (run.empty()) return true;
+    for (std::size_t i = 0; i + run.size() <= file.size(); ++i)
+        if (std::equal(run.begin(), run.end(), file.begin() + static_cast<std::ptrdiff_t>(i))) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("every C++ snippet of the documentation is an excerpt of a compiled example") {
+    const fs::path root = CERTIPOSE_SOURCE_DIR;
+    std::vector<std::vector<std::string>> programs;
+    for (const fs::path& dir : {root / "examples", root / "examples" / "docs"})
+        for (const auto& e : fs::directory_iterator(dir))
+            if (e.path().extension() == ".cpp") {
+                auto l = lines_of(e.path());
+                for (auto& x : l) x = trimmed(x);
+                programs.push_back(std::move(l));
+            }
+    REQUIRE(programs.size() >= 10);
+    std::vector<fs::path> pages{root / "README.md"};
+    for (const auto& e : fs::directory_iterator(root / "docs"))
+        if (e.path().extension() == ".md") pages.push_back(e.path());
+    std::size_t checked = 0;
+    for (const auto& page : pages)
+        for (const auto& s : cpp_snippets(page)) {
+            CAPTURE(s.where);
+            const bool found = std::any_of(programs.begin(), programs.end(),
+                                           [&](const auto& p) { return contains_run(p, s.lines); });
+            CHECK_MESSAGE(found, s.where << ": this ```cpp block is not an excerpt of examples/*.cpp or "
+                                            "examples/docs/*.cpp; put it in the page's example program");
+            ++checked;
+        }
+    MESSAGE(checked << " snippets checked");
+    CHECK(checked >= 12);
+}
