@@ -6,6 +6,10 @@
 //                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
 //                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N] [--quiet]
 //
+// Built as certipose-part-mpi (CERTIPOSE_WITH_MPI), the same program runs under mpirun: facets
+// are balanced over the ranks (part/mpi.hpp), each rank uses --threads threads, and rank 0 writes
+// the one folder, identical to a single-process run's.
+//
 // Writes DIR/summary.json and DIR/boxes.jsonl (VALID boxes; BOUNDARY ones too with --boundary),
 // both committed together at the end (io/output_files.hpp): a run that fails leaves DIR as it
 // was. SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
@@ -20,6 +24,9 @@
 #include <certipose/io/part_files.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
+#if defined(CERTIPOSE_PART_MPI)
+#include <certipose/part/mpi.hpp>
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +43,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace certipose_program;
+
+/// The MPI rank (0 without MPI): only rank 0 prints errors, so a failure is one line, not one per rank.
+int this_rank = 0;
 
 struct arguments {
     fs::path mesh, camera, out;
@@ -72,14 +82,14 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--max-boxes", max_boxes, "box budget of the whole run (facets in order)")->type_name("N");
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
     const auto fail = [&](const std::string& message) {
-        std::cerr << "certipose-part: error: " << one_line(message) << " (run with --help for usage)\n";
+        if (this_rank == 0) std::cerr << "certipose-part: error: " << one_line(message) << " (run with --help for usage)\n";
         code = exit_usage;
         return std::nullopt;
     };
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
+        if (this_rank == 0) std::cout << app.help();
         code = exit_ok;
         return std::nullopt;
     } catch (const CLI::ParseError& e) {
@@ -124,10 +134,20 @@ using part_solver_for = certipose::part_solver<std::conditional_t<
     std::is_same_v<Occlusion, certipose::aabb_occlusion>, certipose::with_camera<certipose::calibrated_camera>,
     certipose::with_occlusion<Occlusion, certipose::with_camera<certipose::calibrated_camera>>>>;
 
+/// This process's place in an MPI run (rank 0 of 1 without MPI).
+struct process {
+    int rank = 0, ranks = 1;
+};
+
+/// Discards what it is given (the sink of MPI ranks other than 0, which write nothing).
+struct null_sink {
+    void facet(const certipose::facet_outcome<certipose::boost_interval>&) {}
+};
+
 /// Runs the part and writes the folder; returns the exit code.
 template <class Occlusion>
 int run(const arguments& args, const certipose::triangle_mesh& mesh, const certipose::camera_task& input,
-        const interruption& signals) {
+        const interruption& signals, process proc) {
     using I = certipose::boost_interval;
     const part_solver_for<Occlusion> part(mesh, input.calibrated(), input.task);
 
@@ -142,7 +162,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.keep_boundary = args.boundary;
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
     opt.stop = signals.token();
-    const bool progress = show_progress(args.quiet);
+    const bool progress = proc.rank == 0 && show_progress(args.quiet);
     if (progress)
         opt.progress = [](const certipose::part_progress& p) {
             const double rate = p.seconds > 0 ? static_cast<double>(p.facets_done) / p.seconds : 0.0;
@@ -151,11 +171,23 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
             return true;
         };
 
+    const auto solve = [&](auto& sink) {
+#if defined(CERTIPOSE_PART_MPI)
+        return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
+#else
+        return part.solve(opt, sink);
+#endif
+    };
+    if (proc.rank != 0) {  // a worker rank: solves what rank 0 hands out, writes nothing
+        null_sink nothing;
+        (void)solve(nothing);
+        return signals.interrupted() ? signals.exit_code() : exit_ok;
+    }
     fs::create_directories(args.out);
     certipose::output_files files;
     std::ostream& boxes = files.stream(args.out / "boxes.jsonl");
     certipose::jsonl_sink<I> sink(boxes, certipose::checks_occlusion<Occlusion>);
-    const certipose::part_result r = part.solve(opt, sink);
+    const certipose::part_result r = solve(sink);
     if (progress) std::fputc('\n', stderr);
 
     certipose::part_summary s;
@@ -170,16 +202,17 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     s.settings.occlusion = args.occlusion;
     s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
     s.facets = r.facets;
-    s.totals = {r.seconds, r.threads, 1, r.facets_selected, r.facets.size(), r.valid, r.boundary, r.skipped, r.reason,
-                signals.interrupted()};
+    s.totals = {r.seconds, r.threads, static_cast<std::size_t>(proc.ranks), r.facets_selected, r.facets.size(), r.valid,
+                r.boundary, r.skipped, r.reason, signals.interrupted()};
     files.close(args.out / "boxes.jsonl");
     files.add(args.out / "summary.json", certipose::json_text(certipose::part_summary_to_json(s)));
     files.commit();
 
     if (!args.quiet) {
-        std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %zu threads: %zu valid, %zu boundary boxes, %zu facets skipped\n",
-                    args.mesh.string().c_str(), mesh.num_faces(), r.facets.size(), r.facets_selected, r.seconds, r.threads,
-                    r.valid, r.boundary, r.skipped);
+        std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %d rank(s) x %zu threads: %zu valid, %zu boundary "
+                    "boxes, %zu facets skipped\n",
+                    args.mesh.string().c_str(), mesh.num_faces(), r.facets.size(), r.facets_selected, r.seconds, proc.ranks,
+                    r.threads, r.valid, r.boundary, r.skipped);
         if (r.reason != certipose::termination::completed)
             std::printf("  stopped early: %s ended the run; the facets finished are written\n",
                         signals.interrupted() ? interruption::name(signals.signal()) : certipose::to_string(r.reason));
@@ -191,13 +224,34 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
 }
 
 int report(const std::string& message) {
-    std::cerr << "certipose-part: " << one_line(message) << "\n";
+    if (this_rank == 0) std::cerr << "certipose-part: " << one_line(message) << "\n";
     return exit_failure;
 }
 
 }  // namespace
 
+#if defined(CERTIPOSE_PART_MPI)
+/// MPI for the program's lifetime; only the main thread calls MPI (part/mpi.hpp).
+struct mpi_session {
+    process proc;
+    mpi_session(int& argc, char**& argv) {
+        int provided = 0;
+        MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+        MPI_Comm_rank(MPI_COMM_WORLD, &proc.rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &proc.ranks);
+    }
+    ~mpi_session() { MPI_Finalize(); }
+};
+#endif
+
 int main(int argc, char** argv) {
+#if defined(CERTIPOSE_PART_MPI)
+    const mpi_session mpi(argc, argv);
+    const process proc = mpi.proc;
+#else
+    const process proc{};
+#endif
+    this_rank = proc.rank;
     int code = exit_ok;
     const auto args = parse(argc, argv, code);
     if (!args) return code;
@@ -208,9 +262,9 @@ int main(int argc, char** argv) {
         const interruption signals;
         const certipose::triangle_mesh mesh = certipose::read_mesh(args->mesh, {.scale = args->scale});
         const certipose::camera_task input = certipose::read_camera_task(args->camera);
-        if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, signals);
-        if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, signals);
-        return run<certipose::aabb_occlusion>(*args, mesh, input, signals);
+        if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, signals, proc);
+        if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, signals, proc);
+        return run<certipose::aabb_occlusion>(*args, mesh, input, signals, proc);
     } catch (const certipose::error& e) {
         return report(e.what());
     } catch (const std::exception& e) {

@@ -2,7 +2,8 @@
 # Installs what certipose needs on Debian 12, and nothing when it is all there (idempotent).
 set -euo pipefail
 packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev
-          libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev)
+          libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
