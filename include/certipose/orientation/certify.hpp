@@ -35,10 +35,12 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
 
+#include "certipose/detail/config.hpp"
 #include "certipose/detail/format.hpp"
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/contractor/concept.hpp"
@@ -166,17 +168,17 @@ template <Interval I>
 using ivec3 = std::array<I, 3>;
 
 template <Interval I>
-I dot(const ivec3<I>& a, const ivec3<I>& b) {
+CERTIPOSE_DETAIL_INLINE I dot(const ivec3<I>& a, const ivec3<I>& b) {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 template <Interval I>
-ivec3<I> cross(const ivec3<I>& a, const ivec3<I>& b) {
+CERTIPOSE_DETAIL_INLINE ivec3<I> cross(const ivec3<I>& a, const ivec3<I>& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
 /// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β) from sines and cosines, row-major (DESIGN.md §2).
 template <Interval I>
-std::array<ivec3<I>, 3> zxz_rows(const I& sp, const I& cp, const I& sg, const I& cg, const I& sb, const I& cb) {
+CERTIPOSE_DETAIL_INLINE std::array<ivec3<I>, 3> zxz_rows(const I& sp, const I& cp, const I& sg, const I& cg, const I& sb, const I& cb) {
     const I cg_sb = cg * sb, cg_cb = cg * cb;
     return {{{cp * cb - sp * cg_sb, -(cp * sb) - sp * cg_cb, sp * sg},
              {sp * cb + cp * cg_sb, cp * cg_cb - sp * sb, -(cp * sg)},
@@ -185,12 +187,74 @@ std::array<ivec3<I>, 3> zxz_rows(const I& sp, const I& cp, const I& sg, const I&
 
 /// Rᵀ·d for R given by rows.
 template <Interval I>
-ivec3<I> transpose_times(const std::array<ivec3<I>, 3>& r, const ivec3<I>& d) {
+CERTIPOSE_DETAIL_INLINE ivec3<I> transpose_times(const std::array<ivec3<I>, 3>& r, const ivec3<I>& d) {
     return {r[0][0] * d[0] + r[1][0] * d[1] + r[2][0] * d[2], r[0][1] * d[0] + r[1][1] * d[1] + r[2][1] * d[2],
             r[0][2] * d[0] + r[1][2] * d[1] + r[2][2] * d[2]};
 }
 
 }  // namespace detail::orientation
+
+/// What certify_fov needs of the position box alone, computed once per box: the orientation
+/// search of one position box asks for a couple of dozen 6D certifications of the same [p]
+/// (paper_orientation), and these square roots, divisions and libm calls were most of each.
+/// The values are exactly those certify_fov computed inline before.
+template <Interval I>
+struct fov_position {
+    position_box<I> box;
+    facet target;
+    bool empty = true, finite = false;
+    std::array<double, 3> p0{}, r_pos{};  ///< centre and radii of the box
+    std::array<detail::orientation::ivec3<I>, 3> d0{};  ///< v_i − p0
+    I half_diag;                          ///< ‖radii‖
+    std::array<I, 3> n0{};                ///< ‖d0_i‖
+    std::array<bool, 3> reaches{};        ///< the box may reach vertex i (no roll-free proof then)
+    std::array<detail::orientation::bounds, 3> b_pos{}, b_pole{};  ///< angular radius of the box from v_i; angle of d0_i from +z
+
+    /// Throws invalid_argument("facet") for a non-finite vertex.
+    fov_position(const position_box<I>& position, const facet& f) : box(position), target(f) {
+        using namespace detail::orientation;
+        check_facet(f);
+        const rounding_guard<I> guard{};
+        empty = is_empty(position);
+        if (empty) return;
+        finite = finite_box(position);
+        if (!finite) return;
+        r_pos = {radius(position[0]), radius(position[1]), radius(position[2])};
+        p0 = midpoint(position);
+        for (std::size_t i = 0; i < 3; ++i)
+            d0[i] = {I(f.v[i].x()) - I(p0[0]), I(f.v[i].y()) - I(p0[1]), I(f.v[i].z()) - I(p0[2])};
+        half_diag = sqrt(sqr(I(r_pos[0])) + sqr(I(r_pos[1])) + sqr(I(r_pos[2])));
+        std::array<double, 3> tan_pos{};
+        std::array<I, 3> cos_pole{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            const I n0_sq = dot(d0[i], d0[i]);
+            n0[i] = sqrt(n0_sq);
+            reaches[i] = !(upper(half_diag) < lower(n0[i]));
+            if (reaches[i]) continue;
+            // tan of the angular radius of the position box seen from the vertex about d0. The
+            // cone {angle(·, d0) ≤ t} is convex for t < π/2, so the largest angle is at a corner
+            // p0 − δ: tan = ‖δ⊥‖ / (‖d0‖ + δ∥), with ‖δ‖ = half_diag at every corner.
+            const I& n = n0[i];
+            const I s0 = I(r_pos[0]) * d0[i][0] / n, s1 = I(r_pos[1]) * d0[i][1] / n, s2 = I(r_pos[2]) * d0[i][2] / n;
+            const I hd_sq = sqr(half_diag);
+            double worst = 0.0;
+            for (const I& t : {s0 + s1 + s2, s0 + s1 - s2, s0 - s1 + s2, s0 - s1 - s2}) {
+                for (const I& par : {t, -t}) {
+                    const double perp_sq = std::max(0.0, upper(hd_sq - sqr(par)));
+                    worst = std::max(worst, upper(sqrt(I(perp_sq)) / (n + par)));
+                }
+            }
+            tan_pos[i] = worst;
+            cos_pole[i] = d0[i][2] / n;
+        }
+        const certipose::detail::round_to_nearest_scope nearest{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            if (reaches[i]) continue;
+            b_pos[i] = atan_bounds_nearest(tan_pos[i], tan_pos[i]);
+            b_pole[i] = acos_bounds_nearest(lower(cos_pole[i]), upper(cos_pole[i]));
+        }
+    }
+};
 
 // noclone: GCC's IPA-CP otherwise clones this large function per call site with the CGAL
 // backend, and one test translation unit took over 20 min to compile at -O2 (12 s without).
@@ -199,18 +263,17 @@ ivec3<I> transpose_times(const std::array<ivec3<I>, 3>& r, const ivec3<I>& d) {
 #pragma clang diagnostic push
 #pragma clang diagnostic ignored "-Wunknown-attributes"
 #endif
-/// Proves or refutes constraint 5 over the whole 6D box [p] × [e] (see the header comment).
-/// An empty box yields `violated` (it holds no pose to certify); a box with an infinite bound
-/// yields `undecided`. Throws invalid_argument("facet") for a non-finite vertex.
+/// Proves or refutes constraint 5 over the whole 6D box [p] × [e] (see the header comment), for
+/// a position box prepared once (fov_position). An empty box yields `violated` (it holds no pose
+/// to certify); a box with an infinite bound yields `undecided`.
 template <Interval I>
-[[gnu::noclone]] verdict certify_fov(const position_box<I>& position, const orientation_box<I>& orientation,
-                                     const facet& f, const fov_frustum<I>& frustum) {
+[[gnu::noclone]] verdict certify_fov(const fov_position<I>& pos, const orientation_box<I>& orientation,
+                                     const fov_frustum<I>& frustum) {
     using namespace detail::orientation;
     using certipose::detail::round_to_nearest_scope;
-    check_facet(f);
     const rounding_guard<I> guard{};
-    if (is_empty(position) || is_empty(orientation)) return verdict::violated;
-    if (!finite_box(position) || !finite_box(orientation)) return verdict::undecided;
+    if (pos.empty || is_empty(orientation)) return verdict::violated;
+    if (!pos.finite || !finite_box(orientation)) return verdict::undecided;
 
     const I& phi = orientation[0];
     const I& gam = orientation[1];
@@ -228,16 +291,16 @@ template <Interval I>
     bounds b_sg_lo, b_cg_lo, b_sg_hi, b_cg_hi, b_cr, b_g;
     {
         const round_to_nearest_scope nearest{};
-        b_sp = sin_bounds_nearest(lower(phi), upper(phi)), b_cp = cos_bounds_nearest(lower(phi), upper(phi));
-        b_sg = sin_bounds_nearest(lower(gam), upper(gam)), b_cg = cos_bounds_nearest(lower(gam), upper(gam));
+        sincos_bounds_nearest(lower(phi), upper(phi), b_sp, b_cp);
+        sincos_bounds_nearest(lower(gam), upper(gam), b_sg, b_cg);
         b_g = acos_bounds_nearest(b_cg.lo, b_cg.hi);  // angle G between the axis and +z
-        b_sb = sin_bounds_nearest(lower(bet), upper(bet)), b_cb = cos_bounds_nearest(lower(bet), upper(bet));
-        b_sp0 = sin_bounds_nearest(phi0, phi0), b_cp0 = cos_bounds_nearest(phi0, phi0);
-        b_sg0 = sin_bounds_nearest(gam0, gam0), b_cg0 = cos_bounds_nearest(gam0, gam0);
-        b_sb0 = sin_bounds_nearest(bet0, bet0), b_cb0 = cos_bounds_nearest(bet0, bet0);
+        sincos_bounds_nearest(lower(bet), upper(bet), b_sb, b_cb);
+        sincos_bounds_nearest(phi0, phi0, b_sp0, b_cp0);
+        sincos_bounds_nearest(gam0, gam0, b_sg0, b_cg0);
+        sincos_bounds_nearest(bet0, bet0, b_sb0, b_cb0);
         if (patch) {
-            b_sg_lo = sin_bounds_nearest(lower(gam), lower(gam)), b_cg_lo = cos_bounds_nearest(lower(gam), lower(gam));
-            b_sg_hi = sin_bounds_nearest(upper(gam), upper(gam)), b_cg_hi = cos_bounds_nearest(upper(gam), upper(gam));
+            sincos_bounds_nearest(lower(gam), lower(gam), b_sg_lo, b_cg_lo);
+            sincos_bounds_nearest(upper(gam), upper(gam), b_sg_hi, b_cg_hi);
             b_cr = cos_bounds_nearest(r_phi, r_phi);
         }
     }
@@ -245,11 +308,8 @@ template <Interval I>
             cg = to_interval<I>(b_cg), sb = to_interval<I>(b_sb), cb = to_interval<I>(b_cb);
     const I sp0 = to_interval<I>(b_sp0), cp0 = to_interval<I>(b_cp0), sg0 = to_interval<I>(b_sg0),
             cg0 = to_interval<I>(b_cg0), sb0 = to_interval<I>(b_sb0), cb0 = to_interval<I>(b_cb0);
-    const std::array<double, 3> r_pos{radius(position[0]), radius(position[1]), radius(position[2])};
-    const std::array<double, 3> p0 = midpoint(position);
-    std::array<ivec3<I>, 3> d0{};
-    for (std::size_t i = 0; i < 3; ++i)
-        d0[i] = {I(f.v[i].x()) - I(p0[0]), I(f.v[i].y()) - I(p0[1]), I(f.v[i].z()) - I(p0[2])};
+    const std::array<double, 3>& r_pos = pos.r_pos;
+    const std::array<ivec3<I>, 3>& d0 = pos.d0;
 
     // ---- centred form in (φ, γ, β), exact in p -----------------------------------------------
     // g_k(e) = ℓ_k·Rᵀ(e)·d0 has ∂g_k/∂e_j = ℓ_k·(u × a_j), u = Rᵀd0, with the rotation axes in
@@ -306,44 +366,26 @@ template <Interval I>
     }
     // Angle G = acos(cos γ) between the axis and +z, from the enclosure of cos over [γ].
     const double g_lo = b_g.lo, g_hi = b_g.hi;
-    const I half_diag = sqrt(sqr(I(r_pos[0])) + sqr(I(r_pos[1])) + sqr(I(r_pos[2])));
 
-    // Per vertex, the algebraic parts first; then one rounding switch for every atan/acos.
-    std::array<double, 3> tan_pos{};
-    std::array<I, 3> cos_c{}, cos_pole{};
+    // Per vertex (the position-only parts are in `pos`), then one rounding switch for the acos.
+    std::array<I, 3> cos_c{};
     for (std::size_t i = 0; i < 3; ++i) {
         if (!pending[i]) continue;
-        const I n0_sq = dot(d0[i], d0[i]);
-        const I n0 = sqrt(n0_sq);
-        if (!(upper(half_diag) < lower(n0))) return verdict::undecided;  // the box reaches the vertex
-        // tan of the angular radius of the position box seen from the vertex about d0. The cone
-        // {angle(·, d0) ≤ t} is convex for t < π/2, so the largest angle is at a corner p0 − δ:
-        // tan = ‖δ⊥‖ / (‖d0‖ + δ∥), with ‖δ‖ = half_diag at every corner.
-        const I s0 = I(r_pos[0]) * d0[i][0] / n0, s1 = I(r_pos[1]) * d0[i][1] / n0, s2 = I(r_pos[2]) * d0[i][2] / n0;
-        const I hd_sq = sqr(half_diag);
-        double worst = 0.0;
-        for (const I& t : {s0 + s1 + s2, s0 + s1 - s2, s0 - s1 + s2, s0 - s1 - s2}) {
-            for (const I& par : {t, -t}) {
-                const double perp_sq = std::max(0.0, upper(hd_sq - sqr(par)));
-                worst = std::max(worst, upper(sqrt(I(perp_sq)) / (n0 + par)));
-            }
-        }
-        tan_pos[i] = worst;
-        cos_c[i] = dot(d0[i], a0) / (n0 * a0_norm);
-        cos_pole[i] = d0[i][2] / n0;
+        if (pos.reaches[i]) return verdict::undecided;  // the box reaches the vertex
+        cos_c[i] = dot(d0[i], a0) / (pos.n0[i] * a0_norm);
     }
-    std::array<bounds, 3> b_pos{}, b_c{}, b_pole{};
+    std::array<bounds, 3> b_c{};
     bounds b_patch{0.0, pi_hi};
     {
         const round_to_nearest_scope nearest{};
         if (patch) b_patch = acos_bounds_nearest(cos_patch, cos_patch);
         for (std::size_t i = 0; i < 3; ++i) {
             if (!pending[i]) continue;
-            b_pos[i] = atan_bounds_nearest(tan_pos[i], tan_pos[i]);
             b_c[i] = acos_bounds_nearest(lower(cos_c[i]), upper(cos_c[i]));
-            b_pole[i] = acos_bounds_nearest(lower(cos_pole[i]), upper(cos_pole[i]));
         }
     }
+    const std::array<bounds, 3>& b_pos = pos.b_pos;
+    const std::array<bounds, 3>& b_pole = pos.b_pole;
     const double r_axis = std::min({pi_hi, upper(I(r_gam) + I(r_phi) * abs(sg0)), b_patch.hi});
     const I two_pi(2 * pi_lo, 2 * pi_hi);
 
@@ -373,6 +415,13 @@ template <Interval I>
 #pragma clang diagnostic pop
 #endif
 
+/// Same for a position box given as such. Throws invalid_argument("facet") for a non-finite vertex.
+template <Interval I>
+verdict certify_fov(const position_box<I>& position, const orientation_box<I>& orientation, const facet& f,
+                    const fov_frustum<I>& frustum) {
+    return certify_fov(fov_position<I>(position, f), orientation, frustum);
+}
+
 /// Same, building the frustum from K and the image size (prefer the frustum overload in loops).
 template <Interval I>
 verdict certify_fov(const position_box<I>& position, const orientation_box<I>& orientation, const facet& f,
@@ -394,10 +443,12 @@ struct fov_orientation_test {
     facet target;
     fov_frustum<I> frustum;
     std::size_t certifications = 0;
+    std::optional<fov_position<I>> prepared{};  ///< the position-only half, on first use
 
     verdict test(const orientation_box<I>& orientation) {
         ++certifications;
-        return certify_fov(position, orientation, target, frustum);
+        if (!prepared) prepared.emplace(position, target);
+        return certify_fov(*prepared, orientation, frustum);
     }
 };
 

@@ -354,8 +354,9 @@ public:
         const std::array<double, 3> nominal{aim->phi, aim->gamma, aim->beta};
         std::array<double, 3> centre = nominal;
         if (!contains(*cand, nominal)) centre = midpoint(*cand);
+        const fov_position<I> prepared(position, f);  // the position-only half of every certification
         const auto certified = [&](const orientation_box<I>& b) {
-            return certify_tiled(position, b, f, frustum, out.certifications);
+            return certify_tiled(prepared, b, frustum, out.certifications);
         };
         const auto budget_left = [&] { return out.certifications < options_.max_certifications; };
 
@@ -425,7 +426,7 @@ public:
     /// evaluations; β spanning π or more is never split: the roll-free cone test does not
     /// improve on halves of it). True when every tile is certified.
     template <Interval I>
-    bool certify_tiled(const position_box<I>& position, const orientation_box<I>& box, const facet& f,
+    bool certify_tiled(const fov_position<I>& position, const orientation_box<I>& box,
                        const fov_frustum<I>& frustum, std::size_t& certifications) const {
         std::vector<orientation_box<I>> stack{box};
         std::size_t used = 0;
@@ -434,7 +435,7 @@ public:
             stack.pop_back();
             if (used >= options_.tiling_budget) return false;
             ++used, ++certifications;
-            const verdict v = certify_fov(position, b, f, frustum);
+            const verdict v = certify_fov(position, b, frustum);
             if (v == verdict::satisfied) continue;
             if (v == verdict::violated) return false;
             if (width(b[2]) >= detail::orientation::pi_lo) return false;

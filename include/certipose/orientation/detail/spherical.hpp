@@ -38,18 +38,17 @@ inline double widen_down(double x) noexcept {
 inline double widen_up(double x) noexcept { return x + (std::abs(x) * 0x1p-50 + 0x1p-1070); }
 
 /// Enclosure of { f(x) : x ∈ [l, u] } for f = sin (phase π/2) or cos (phase 0), whose extrema are
-/// at phase + kπ with value ±1. The same method as interval/detail/transcendental.hpp, but
-/// WITHOUT opening a rounding scope: the caller holds one `round_to_nearest_scope` for a whole
-/// batch of evaluations, because switching the mode costs ~100 ns, more than sin and cos
-/// together. Endpoint values are widened by `transcendental_ulps`; an extremum whose abscissa
-/// is within a tolerance larger than the error of phase + k·π is included, so none is missed.
-template <class F>
-bounds periodic_bounds_nearest(double l, double u, F f, double phase) {
+/// at phase + kπ with value ±1, from the values fl = f(l), fu = f(u) (libm, round-to-nearest).
+/// The same method as interval/detail/transcendental.hpp, but WITHOUT opening a rounding scope:
+/// the caller holds one `round_to_nearest_scope` for a whole batch of evaluations, because
+/// switching the mode costs more than sin and cos together. Endpoint values are widened by
+/// `transcendental_ulps`; an extremum whose abscissa is within a tolerance larger than the error
+/// of phase + k·π is included, so none is missed.
+inline bounds periodic_bounds_from(double l, double u, double fl, double fu, double phase) {
     constexpr double pi = std::numbers::pi;
     // Huge arguments: k·π below would stop being exact (and k += 1 stop advancing).
     constexpr double huge = 1e9;
     if (!(std::abs(l) < huge && std::abs(u) < huge) || u - l >= 2.0 * pi - 1e-6) return {-1.0, 1.0};
-    const double fl = f(l), fu = f(u);
     double lo = widen_down(std::min(fl, fu)), hi = widen_up(std::max(fl, fu));
     const double k0 = std::floor((l - phase) / pi) - 1.0;
     const double k1 = std::ceil((u - phase) / pi) + 1.0;
@@ -64,10 +63,25 @@ bounds periodic_bounds_nearest(double l, double u, F f, double phase) {
     return {std::max(lo, -1.0), std::min(hi, 1.0)};
 }
 inline bounds cos_bounds_nearest(double l, double u) {
-    return periodic_bounds_nearest(l, u, [](double x) { return std::cos(x); }, 0.0);
+    return periodic_bounds_from(l, u, std::cos(l), l == u ? std::cos(l) : std::cos(u), 0.0);
 }
 inline bounds sin_bounds_nearest(double l, double u) {
-    return periodic_bounds_nearest(l, u, [](double x) { return std::sin(x); }, std::numbers::pi / 2);
+    return periodic_bounds_from(l, u, std::sin(l), l == u ? std::sin(l) : std::sin(u), std::numbers::pi / 2);
+}
+/// Both enclosures of [l, u] at once: one libm sincos per endpoint instead of a sin and a cos
+/// (glibc computes both with the same code as sin and cos, to the same accuracy), and one for a
+/// point interval.
+inline void sincos_bounds_nearest(double l, double u, bounds& sine, bounds& cosine) {
+    double sl = 0, cl = 0, su = 0, cu = 0;
+#if defined(__GLIBC__)
+    ::sincos(l, &sl, &cl);
+    if (l == u) su = sl, cu = cl;
+    else ::sincos(u, &su, &cu);
+#else
+    sl = std::sin(l), cl = std::cos(l), su = std::sin(u), cu = std::cos(u);
+#endif
+    sine = periodic_bounds_from(l, u, sl, su, std::numbers::pi / 2);
+    cosine = periodic_bounds_from(l, u, cl, cu, 0.0);
 }
 /// acos is decreasing on [−1, 1]; arguments are clamped to it (call inside a nearest scope).
 inline bounds acos_bounds_nearest(double l, double u) {
