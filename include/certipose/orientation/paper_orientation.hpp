@@ -433,7 +433,9 @@ public:
         while (!stack.empty()) {
             const orientation_box<I> b = stack.back();
             stack.pop_back();
-            if (used >= options_.tiling_budget) return false;
+            // This tile and every pending one need an evaluation each: when the budget cannot
+            // cover them, the answer is already `false` (spending the rest would not change it).
+            if (used + 1 + stack.size() > options_.tiling_budget) return false;
             ++used, ++certifications;
             const verdict v = certify_fov(position, b, frustum);
             if (v == verdict::satisfied) continue;
