@@ -5,8 +5,9 @@
 //                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
 //                   [--time-limit SECONDS] [--quiet]
 //
-// Reads the mesh and the camera/task JSON, solves, writes the result JSON (and the PLY)
-// atomically. Every error prints one line "certipose-solve: ..." on stderr; exit codes:
+// Reads the mesh and the camera/task JSON, solves, writes the result JSON (and the PLY): both
+// committed together or neither (io/output_files.hpp), never over an input. SIGINT/SIGTERM stop
+// the solve through its cancellation; nothing is written and the exit code is 130/143. Every error prints one line "certipose-solve: ..." on stderr; exit codes:
 // 0 success, 1 bad input file / solver / write error, 2 bad command line (docs/io.md).
 //
 // The pipeline is `certipose::pose_solver` with the defaults (Boost intervals, the paper's
@@ -21,9 +22,11 @@
 #include <certipose/io/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <numbers>
 #include <string>
 #include <type_traits>
 
@@ -32,6 +35,7 @@
 namespace {
 
 using I = certipose::boost_interval;
+using certipose_program::interruption;
 
 /// Progress on one stderr line, rewritten in place (only when stderr is a terminal).
 std::function<bool(const certipose::solve_progress&)> progress_printer(bool quiet) {
@@ -98,6 +102,23 @@ std::string advice(certipose::boundary_reason why, const certipose_solve::argume
     return smaller_eps;
 }
 
+/// A warning before a run that can only end on its budget: paving the in-focus shell (radii d_min
+/// to d_max around the facet) at width ε takes about (its volume) / ε³ boxes, and its two
+/// boundary surfaces alone about (their area) / ε² undecided ones.
+void warn_if_tiny(const certipose_solve::arguments& args, const certipose::calibrated_camera& camera,
+                  const certipose::triangle_mesh& mesh, const certipose::solve_options& options) {
+    const certipose::distance_range range = camera.distance_range();
+    const double area = 4.0 * std::numbers::pi * (range.min * range.min + range.max * range.max);
+    const double boxes = area / (args.position_eps * args.position_eps);
+    if (std::isfinite(boxes) && boxes > 10.0 * static_cast<double>(options.max_boxes))
+        std::fprintf(stderr,
+                     "certipose-solve: warning: --position-eps %s is tiny for this camera (in focus from %.3g to %.3g m, "
+                     "part %.3g m across): about %.1e boundary boxes, over the %zu-box budget; the run will end on "
+                     "the budget (raise --position-eps, or set --max-boxes / --time-limit)\n",
+                     certipose::detail::format_double(args.position_eps).c_str(), range.min, range.max,
+                     mesh.bbox().diagonal().norm(), boxes, options.max_boxes);
+}
+
 /// One line per error, whatever the message holds.
 int report(const std::string& message) {
     std::cerr << "certipose-solve: " << certipose_solve::detail::one_line(message) << "\n";
@@ -111,6 +132,7 @@ int main(int argc, char** argv) {
         certipose_solve::parse_arguments(argc, argv, std::cout, std::cerr);
     if (!parsed.args) return parsed.exit_code;
     const certipose_solve::arguments& args = *parsed.args;
+    const interruption signals;  // SIGINT/SIGTERM: stop the solve, write nothing, exit 130/143
 
     try {
         const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
@@ -126,14 +148,28 @@ int main(int argc, char** argv) {
                 std::chrono::duration<double>(*args.time_limit_seconds));
         options.validate();
 
+        if (!args.quiet) warn_if_tiny(args, input.calibrated(), mesh, options);
+
+        options.stop = signals.token();
         const auto result = solve(mesh, input.calibrated(), input.task, args, options);
+        const auto interrupted = [&] {
+            std::cerr << "certipose-solve: interrupted by " << interruption::name(signals.signal())
+                      << "; nothing written\n";
+            return signals.exit_code();
+        };
+        if (signals.interrupted()) return interrupted();
 
         const certipose::result_document document =
             certipose::make_result_document(result, mesh, input.camera, input.task, options);
         nlohmann::ordered_json json = certipose::result_to_json(document);
         json["settings"]["occlusion"] = certipose_solve::to_string(args.occlusion);  // extra field
-        certipose::write_json_file(args.out, json);
-        if (args.ply) certipose::write_ply(*args.ply, mesh, document);
+        // Both files or neither: each is staged complete before either is renamed into place,
+        // and a signal that arrives while they are staged discards them (output_files.hpp).
+        certipose::output_files files;
+        files.add(args.out, certipose::json_text(json));
+        if (args.ply) files.add(*args.ply, certipose::ply_text(mesh, document.facet.index, document.boxes));
+        if (signals.interrupted()) return interrupted();
+        files.commit();
 
         if (!args.quiet) {
             const auto& st = document.stats;

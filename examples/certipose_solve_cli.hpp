@@ -16,6 +16,8 @@
 
 #include "program_support.hpp"
 
+#include <certipose/io/output_files.hpp>
+
 #include <CLI/CLI.hpp>
 
 #include <charconv>
@@ -27,6 +29,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace certipose_solve {
 
@@ -148,14 +151,17 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                                                  "a positive finite number of radians");
         a.out = output;
         detail::check_output("--out", a.out);
+        std::vector<certipose::named_path> outputs{{"--out", a.out}};
         if (!ply.empty()) {
             a.ply = ply;
             detail::check_output("--ply", *a.ply);
-            std::error_code ec_ply, ec_out;
-            const auto ply_full = std::filesystem::weakly_canonical(*a.ply, ec_ply);
-            const auto out_full = std::filesystem::weakly_canonical(a.out, ec_out);
-            if (*a.ply == a.out || (!ec_ply && !ec_out && ply_full == out_full))
-                throw detail::usage_error("--ply: must differ from --out (" + ply + ")");
+            outputs.push_back({"--ply", *a.ply});
+        }
+        // `--out part.off`, `--out ./camera.json`, `--ply` onto `--out`: refused, nothing run.
+        try {
+            certipose::refuse_overwriting_inputs({{"--mesh", a.mesh}, {"--camera", a.camera}}, outputs);
+        } catch (const certipose::invalid_argument& e) {
+            throw detail::usage_error(e.what());
         }
         a.occlusion = occlusion == "boolean" ? occlusion_mode::boolean
                       : occlusion == "none"  ? occlusion_mode::none

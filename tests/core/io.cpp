@@ -4,6 +4,7 @@
 // (parsed back by a small reader written here) and the certipose-solve command line.
 #include <certipose/interval/boost_interval.hpp>
 #include <certipose/io/json.hpp>
+#include <certipose/io/output_files.hpp>
 #include <certipose/io/ply.hpp>
 #include <certipose/io/write_file.hpp>
 
@@ -762,6 +763,66 @@ TEST_CASE("write_file_atomically replaces the whole content or nothing") {
                     certipose::io_error);
 }
 
+TEST_CASE("output_files: every output of a run is committed together, or none is") {
+    temp_dir dir;
+    const fs::path a = dir.path / "result.json", b = dir.path / "boxes.ply";
+    std::ofstream(a) << "old result";
+    {
+        // The second file cannot be written: the first target keeps its old content and no
+        // temporary file is left (the situation of a JSON written before a failing PLY).
+        certipose::output_files files;
+        files.add(a, "new result");
+        CHECK_THROWS_AS(files.add(dir.path / "missing" / "boxes.ply", "ply"), certipose::io_error);
+    }
+    CHECK(slurp(a) == "old result");
+    CHECK(dir.entries() == 1);
+    {
+        // Staged but never committed (an exception, or a signal before commit): discarded.
+        certipose::output_files files;
+        files.add(a, "new result");
+        files.stream(b) << "streamed ";
+        files.stream(b) << "ply";
+        CHECK(dir.entries() == 3);  // the old file and two temporaries
+    }
+    CHECK(slurp(a) == "old result");
+    CHECK_FALSE(fs::exists(b));
+    CHECK(dir.entries() == 1);
+    certipose::output_files files;
+    files.add(a, "new result");
+    files.stream(b) << "streamed ply";
+    files.commit();
+    CHECK(slurp(a) == "new result");
+    CHECK(slurp(b) == "streamed ply");
+    CHECK(dir.entries() == 2);
+}
+
+TEST_CASE("refuse_overwriting_inputs: an input under another name, a link or a second output is refused") {
+    temp_dir dir;
+    const fs::path mesh = dir.path / "part.off", cam = dir.path / "camera.json";
+    std::ofstream(mesh) << "OFF\n";
+    std::ofstream(cam) << "{}";
+    fs::create_symlink(mesh, dir.path / "link.off");
+    fs::create_hard_link(cam, dir.path / "hard.json");
+    const std::vector<certipose::named_path> inputs{{"--mesh", mesh}, {"--camera", cam}};
+    const auto refused = [&](const fs::path& out, const fs::path& second = {}) -> std::string {
+        std::vector<certipose::named_path> outputs{{"--out", out}};
+        if (!second.empty()) outputs.push_back({"--ply", second});
+        try {
+            certipose::refuse_overwriting_inputs(inputs, outputs);
+        } catch (const certipose::invalid_argument& e) {
+            return e.what();
+        }
+        return {};
+    };
+    CHECK(refused(mesh).find("is the input --mesh") != std::string::npos);
+    CHECK(refused(dir.path / "." / "part.off").find("is the input --mesh") != std::string::npos);
+    CHECK(refused(dir.path / "link.off").find("is the input --mesh") != std::string::npos);
+    CHECK(refused(dir.path / "hard.json").find("is the input --camera") != std::string::npos);
+    CHECK(refused(dir.path / "r.json", dir.path / "x" / ".." / "r.json").find("same file as --out") != std::string::npos);
+    CHECK(refused(dir.path / "r.json", dir.path / "b.ply").empty());
+    CHECK(refused(dir.path / "new" / "r.json").empty());  // not existing yet, and not an input
+}
+
 // ==== PLY ========================================================================================
 
 TEST_CASE_TEMPLATE("the PLY holds the part, the facet and one outward solid per box, in colour", I,
@@ -955,7 +1016,13 @@ TEST_CASE("certipose-solve: every command-line mistake is one error line and exi
         {with("--occlusion", "raycast"), "--occlusion"},
         {with("--out", (dir.path / "missing" / "r.json").string()), "--out: directory does not exist"},
         {with("--out", dir.path.string()), "is a directory"},
-        {with("--ply", out), "--ply: must differ from --out"},
+        // An output that is an input or the other output, under any spelling (issue: `--out
+        // part.off` used to replace the mesh and exit 0).
+        {with("--ply", out), "--ply " + out + " is the same file as --out"},
+        {with("--out", mesh), "--out " + mesh + " is the input --mesh"},
+        {with("--out", (dir.path / "." / "part.off").string()), "is the input --mesh"},
+        {with("--out", (dir.path / "." / "cam.json").string()), "is the input --camera"},
+        {with("--ply", mesh), "--ply " + mesh + " is the input --mesh"},
         {with("--frobnicate", "1"), "--frobnicate"},
     };
     for (const auto& c : cases) {

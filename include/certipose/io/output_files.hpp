@@ -92,7 +92,12 @@ public:
 
     /// Opens `target`'s temporary file for streaming; write to the returned stream, then call
     /// `close(target)` (or `commit`, which closes every stream).
-    std::ostream& stream(const std::filesystem::path& target) { return open(target).out; }
+    /// Asking again for the same target returns the same stream (one temporary per target).
+    std::ostream& stream(const std::filesystem::path& target) {
+        for (auto& s : staged_)
+            if (s->target == target && s->out.is_open()) return s->out;
+        return open(target).out;
+    }
 
     /// Flushes and closes `target`'s stream; throws io_error(target) on a write error.
     void close(const std::filesystem::path& target) {
