@@ -11,6 +11,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -226,10 +228,46 @@ TEST_CASE("read_mesh: errors name the file") {
         CHECK(contains(e.what(), p.string()));
         CHECK(contains(e.what(), "vertex"));
         CHECK(contains(e.what(), "nan"));
-        // Text formats: "nan" does not parse as a number, so CGAL reports a parse error.
-        CHECK_THROWS_AS(certipose::read_mesh(
-                            write_text("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n")),
-                        certipose::io_error);
+        // Text formats: "nan" does not parse as a number, so CGAL fails; the message still names
+        // the line, the vertex and the value.
+        const auto off = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n"));
+        });
+        CHECK(contains(off.what(), "line 5"));
+        CHECK(contains(off.what(), "vertex 2"));
+        CHECK(contains(off.what(), "'nan'"));
+        const auto obj = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n"));
+        });
+        CHECK(contains(obj.what(), "line 3"));
+        CHECK(contains(obj.what(), "'inf'"));
+    }
+    SUBCASE("an index out of range is named with its face and line") {
+        const auto off = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("badidx2.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"));
+        });
+        CHECK(contains(off.what(), "line 6"));
+        CHECK(contains(off.what(), "face 0 refers to vertex 7"));
+        CHECK(contains(off.what(), "3 vertices"));
+        const auto obj = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("badidx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"));
+        });
+        CHECK(contains(obj.what(), "line 4"));
+        CHECK(contains(obj.what(), "'9'"));
+    }
+    SUBCASE("CGAL's own messages reach the error, not stderr") {
+        std::ostringstream err;
+        std::streambuf* old = std::cerr.rdbuf(err.rdbuf());
+        std::string what;
+        try {
+            certipose::read_mesh(write_text("garbage2.ply", "garbage\n"));
+        } catch (const certipose::io_error& e) {
+            what = e.what();
+        }
+        std::cerr.rdbuf(old);
+        CHECK(err.str().empty());
+        CHECK(contains(what, "garbage2.ply"));
+        CHECK(contains(what, "incorrect file format"));
     }
     SUBCASE("non-triangle face is rejected, not triangulated") {
         const fs::path p =

@@ -58,14 +58,17 @@ triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& o
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -95,6 +98,122 @@ struct stl_point {
         return false;
     }
 };
+
+/// Captures what CGAL's readers print on std::cerr (its PLY reader prints "Error: incorrect file
+/// format line 1 of file" before returning false) so that the caller sees one line, ours, with
+/// CGAL's words folded into it. std::cerr is process-wide: another thread writing to it while a
+/// mesh is read has its text captured too (and dropped), the price of a quiet reader.
+class captured_cerr {
+public:
+    captured_cerr() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
+    captured_cerr(const captured_cerr&) = delete;
+    captured_cerr& operator=(const captured_cerr&) = delete;
+    ~captured_cerr() { std::cerr.rdbuf(old_); }
+    /// The captured text on one line, without CGAL's "Error: " prefixes; empty if none.
+    std::string one_line() const {
+        std::string out;
+        std::istringstream in(text_.str());
+        for (std::string line; std::getline(in, line);) {
+            if (line.rfind("Error: ", 0) == 0) line.erase(0, 7);
+            while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+            if (line.empty()) continue;
+            out += (out.empty() ? "" : "; ") + line;
+        }
+        return out;
+    }
+
+private:
+    std::ostringstream text_;
+    std::streambuf* old_;
+};
+
+/// Why an ASCII OFF or OBJ file that CGAL refused is bad, naming the line and the value: a
+/// coordinate that is not a finite number, a face index out of range, a short line. Empty when
+/// it finds nothing (CGAL's reason then stands). Run only after a failed read.
+inline std::string diagnose_ascii_mesh(const std::filesystem::path& path, const std::string& ext) {
+    std::ifstream in(path);
+    std::string line;
+    std::size_t line_no = 0;
+    const auto next_line = [&](std::istringstream& words) {
+        while (std::getline(in, line)) {
+            ++line_no;
+            const auto hash = line.find('#');
+            if (hash != std::string::npos) line.erase(hash);
+            if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+            words = std::istringstream(line);
+            return true;
+        }
+        return false;
+    };
+    const auto number = [](const std::string& w, double& v) {
+        const char* b = w.data();
+        const auto [end, ec] = std::from_chars(b, b + w.size(), v);
+        return ec == std::errc{} && end == b + w.size();
+    };
+    const std::string at = path.string() + " line ";
+    const auto where = [&] { return at + std::to_string(line_no) + ": "; };
+    // Three finite coordinates for vertex v on the current line, or what is wrong.
+    const auto bad_vertex = [&](std::istringstream& words, std::size_t v) -> std::string {
+        for (int k = 0; k < 3; ++k) {
+            std::string w;
+            double x = 0;
+            if (!(words >> w)) return where() + "vertex " + std::to_string(v) + " has " + std::to_string(k) + " coordinates, expected 3";
+            if (!number(w, x) || !std::isfinite(x))
+                return where() + "vertex " + std::to_string(v) + " has coordinate '" + w + "', not a finite number";
+        }
+        return {};
+    };
+    std::istringstream words;
+    if (ext == ".off") {
+        if (!next_line(words)) return {};
+        std::string head;
+        words >> head;
+        if (head != "OFF") return {};
+        std::size_t nv = 0, nf = 0;
+        if (!(words >> nv >> nf) && (!next_line(words) || !(words >> nv >> nf)))
+            return where() + "expected the vertex and face counts";
+        for (std::size_t v = 0; v < nv; ++v) {
+            if (!next_line(words)) return path.string() + ": ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices";
+            if (std::string why = bad_vertex(words, v); !why.empty()) return why;
+        }
+        for (std::size_t f = 0; f < nf; ++f) {
+            if (!next_line(words)) return path.string() + ": ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces";
+            long long n = 0;
+            if (!(words >> n) || n < 1) return where() + "face " + std::to_string(f) + " has no valid vertex count";
+            for (long long k = 0; k < n; ++k) {
+                long long idx = 0;
+                if (!(words >> idx)) return where() + "face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " vertex indices";
+                if (idx < 0 || static_cast<unsigned long long>(idx) >= nv)
+                    return where() + "face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) +
+                           ", out of range (the file has " + std::to_string(nv) + " vertices)";
+            }
+        }
+        return {};
+    }
+    if (ext == ".obj") {
+        std::size_t nv = 0, nf = 0;
+        while (next_line(words)) {
+            std::string tag;
+            words >> tag;
+            if (tag == "v") {
+                if (std::string why = bad_vertex(words, nv); !why.empty()) return why;
+                ++nv;
+            } else if (tag == "f") {
+                for (std::string w; words >> w;) {
+                    long long idx = 0;
+                    const char* b = w.data();
+                    const auto [end, ec] = std::from_chars(b, b + w.size(), idx);  // "7/3/2": the vertex is first
+                    if (ec != std::errc{} || idx == 0 || (idx > 0 && static_cast<unsigned long long>(idx) > nv) ||
+                        (idx < 0 && static_cast<unsigned long long>(-idx) > nv))
+                        return where() + "face " + std::to_string(nf) + " refers to vertex '" + w +
+                               "', out of range (" + std::to_string(nv) + " vertices so far; OBJ indices start at 1)";
+                }
+                ++nf;
+            }
+        }
+    }
+    return {};
+}
 
 inline std::string lowercase_extension(const std::filesystem::path& p) {
     std::string ext = p.extension().string();
@@ -132,7 +251,9 @@ CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const 
     triangle_soup soup;
     std::vector<std::vector<std::size_t>> polygons;
     bool ok = false;
+    std::string cgal_says;
     try {
+        const detail::io::captured_cerr quiet;
         if (ext == ".stl") {
             std::vector<detail::io::stl_point> points;
             ok = CGAL::IO::read_STL(name, points, polygons);
@@ -149,13 +270,19 @@ CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const 
             soup.vertices.reserve(points.size());
             for (const auto& p : points) soup.vertices.emplace_back(p.x(), p.y(), p.z());
         }
+        cgal_says = quiet.one_line();
     } catch (const std::exception& e) {  // e.g. bad_alloc on an absurd vertex count
         throw io_error(name, "read_mesh: cannot parse " + name + ": " + e.what());
     }
     const std::string format = ext.substr(1);
-    if (!ok)
+    if (!ok) {
+        if (ext == ".off" || ext == ".obj")
+            if (const std::string why = detail::io::diagnose_ascii_mesh(path, ext); !why.empty())
+                throw io_error(name, "read_mesh: cannot parse " + why);
         throw io_error(name, "read_mesh: cannot parse " + name + " as " + format +
-                                 " (malformed, truncated or an index out of range)");
+                                 (cgal_says.empty() ? std::string(" (malformed, truncated or an index out of range)")
+                                                    : " (CGAL: " + cgal_says + ")"));
+    }
     if (polygons.empty())
         throw io_error(name, "read_mesh: " + name + " contains no faces (empty, or not a " +
                                  format + " file)");
