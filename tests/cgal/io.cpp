@@ -6,14 +6,24 @@
 #include <certipose/interval/cgal_interval.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/io/ply.hpp>
+#include <certipose/io/output_files.hpp>
 #include <certipose/io/read_mesh.hpp>
+#include <certipose/io/write_file.hpp>
+#include <certipose/occlusion/cgal_aabb_occlusion.hpp>
+#include <certipose/solver/task.hpp>
 
 #include <doctest/doctest.h>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <string>
+#include <typeinfo>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -91,5 +101,107 @@ TEST_CASE_TEMPLATE("result JSON and PLY under a held rounding mode, read back ex
             CHECK(box.min()[d] == certipose::lower(result.boxes[b].box.position[d]));
             CHECK(box.max()[d] == certipose::upper(result.boxes[b].box.position[d]));
         }
+    }
+}
+
+// ==== docs/errors.md: the error catalogue cannot drift ===========================================
+//
+// Each case below provokes one error the library or certipose-solve reports, and docs/errors.md
+// must hold a row with its type and its exact message (scratch paths written as DIR/). A new
+// message, or a changed one, fails here with the row to put in the page.
+
+namespace {
+
+struct error_case {
+    const char* name;
+    std::function<void()> provoke;
+};
+
+/// The type name and message of what `provoke` throws, "none" if nothing.
+std::pair<std::string, std::string> caught(const std::function<void()>& provoke) {
+    try {
+        provoke();
+    } catch (const certipose::out_of_range& e) {
+        return {"out_of_range", e.what()};
+    } catch (const certipose::invalid_argument& e) {
+        return {"invalid_argument", e.what()};
+    } catch (const certipose::mesh_error& e) {
+        return {"mesh_error", e.what()};
+    } catch (const certipose::io_error& e) {
+        return {"io_error", e.what()};
+    } catch (const certipose::geometry_error& e) {
+        return {"geometry_error", e.what()};
+    } catch (const certipose::error& e) {
+        return {"error", e.what()};
+    } catch (const std::exception& e) {
+        return {std::string("NOT A certipose::error: ") + typeid(e).name(), e.what()};
+    }
+    return {"none", ""};
+}
+
+std::string replaced_all(std::string s, const std::string& from, const std::string& to) {
+    for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("docs/errors.md lists every error with its type and exact message") {
+    const fs::path dir = scratch("errors").parent_path();
+    const auto file = [&](const std::string& name, const std::string& text) {
+        const fs::path p = dir / name;
+        std::ofstream(p, std::ios::binary) << text;
+        return p;
+    };
+    const std::string tetra_off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    const auto thin_lens = [](double focal_length) {
+        return certipose::thin_lens_camera(certipose::thin_lens_parameters{
+            .focal_length = focal_length, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
+            .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048});
+    };
+    const std::vector<error_case> cases{
+        {"mesh file missing", [&] { certipose::read_mesh(dir / "missing.off"); }},
+        {"unknown mesh format", [&] { certipose::read_mesh(file("part.xyz", "OFF\n")); }},
+        {"mesh file not a mesh (PLY)", [&] { certipose::read_mesh(file("garbage.ply", "garbage\n")); }},
+        {"mesh file empty", [&] { certipose::read_mesh(file("empty.off", "")); }},
+        {"mesh file truncated", [&] { certipose::read_mesh(file("truncated.off", "OFF\n3 1 0\n0 0 0\n")); }},
+        {"NaN coordinate (OFF)", [&] { certipose::read_mesh(file("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n")); }},
+        {"infinite coordinate (OBJ)", [&] { certipose::read_mesh(file("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n")); }},
+        {"face index out of range (OFF)", [&] { certipose::read_mesh(file("badidx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")); }},
+        {"face index out of range (OBJ)", [&] { certipose::read_mesh(file("badidx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")); }},
+        {"non-triangle face", [&] { certipose::read_mesh(file("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")); }},
+        {"degenerate face", [&] { certipose::read_mesh(file("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n")); }},
+        {"bad scale", [&] { certipose::read_mesh(file("tetra.off", tetra_off), {.scale = -1.0}); }},
+        {"open mesh given to the occlusion test", [&] {
+             certipose::aabb_occlusion occ(certipose::triangle_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{{0, 1, 2}}}));
+         }},
+        {"facet out of range", [&] { (void)tetrahedron().facet(9); }},
+        {"camera field out of range", [&] { (void)thin_lens(-0.012); }},
+        {"camera file missing", [&] { certipose::read_camera_task(dir / "missing.json"); }},
+        {"camera JSON syntax", [&] { certipose::parse_camera_task("{\"camera\": {", "camera.json"); }},
+        {"camera JSON field missing", [&] { certipose::parse_camera_task(R"({"camera": {"model": "thin_lens"}, "task": {}})", "camera.json"); }},
+        {"camera JSON unknown field", [&] {
+             certipose::parse_camera_task(R"({"camera": {"model": "thin_lens", "focal_lenght": 0.012}, "task": {}})", "camera.json");
+         }},
+        {"bad position threshold", [&] { certipose::solve_options{.position_eps = 0.0}.validate(); }},
+        {"bad orientation threshold", [&] { certipose::solve_options{.orientation_eps = std::nan("")}.validate(); }},
+        {"output directory missing", [&] { certipose::write_file_atomically(dir / "no" / "result.json", "{}"); }},
+        {"output is an input", [&] {
+             certipose::refuse_overwriting_inputs({{"--mesh", file("part.off", tetra_off)}}, {{"--out", dir / "." / "part.off"}});
+         }},
+    };
+    std::ifstream in(fs::path(CERTIPOSE_SOURCE_DIR) / "docs" / "errors.md");
+    REQUIRE(in);
+    const std::string page{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    for (const auto& c : cases) {
+        const std::string name = c.name;
+        CAPTURE(name);
+        auto [type, message] = caught(c.provoke);
+        message = replaced_all(message, dir.string() + "/./", "DIR/./");
+        message = replaced_all(message, dir.string() + "/", "DIR/");
+        REQUIRE_MESSAGE(type.rfind("NOT", 0) != 0, type);
+        CHECK(type != "none");
+        const std::string row = "| " + std::string(c.name) + " | `" + type + "` | `" + message + "` |";
+        CHECK_MESSAGE(page.find(row) != std::string::npos, "docs/errors.md lacks the row (add a last column):\n" << row);
     }
 }
