@@ -149,7 +149,11 @@ template <class Occlusion>
 int run(const arguments& args, const certipose::triangle_mesh& mesh, const certipose::camera_task& input,
         const interruption& signals, process proc) {
     using I = certipose::boost_interval;
+    stage_line stage("certipose-part", args.quiet || proc.rank != 0);
+    if constexpr (!std::is_same_v<Occlusion, certipose::no_occlusion>)
+        stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
     const part_solver_for<Occlusion> part(mesh, input.calibrated(), input.task);
+    stage.done();
 
     certipose::part_options opt;
     opt.facet.position_eps = args.position_eps;
@@ -260,7 +264,10 @@ int main(int argc, char** argv) {
             {{"--mesh", args->mesh}, {"--camera", args->camera}},
             {{"--out", args->out}, {"--out", args->out / "summary.json"}, {"--out", args->out / "boxes.jsonl"}});
         const interruption signals;
+        stage_line stage("certipose-part", args->quiet || proc.rank != 0);
+        stage.show("reading " + args->mesh.string());
         const certipose::triangle_mesh mesh = certipose::read_mesh(args->mesh, {.scale = args->scale});
+        stage.done();
         const certipose::camera_task input = certipose::read_camera_task(args->camera);
         if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, signals, proc);
         if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, signals, proc);

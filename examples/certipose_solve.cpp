@@ -41,7 +41,7 @@ using certipose_program::interruption;
 std::function<bool(const certipose::solve_progress&)> progress_printer(bool quiet) {
     if (quiet || !::isatty(STDERR_FILENO)) return {};
     return [](const certipose::solve_progress& p) {
-        std::fprintf(stderr, "\r%-11s %8zu boxes  %8zu pending  %6zu valid  %6.2f s", p.stage, p.boxes_done,
+        std::fprintf(stderr, "\r\033[K%-11s %8zu boxes  %8zu pending  %6zu valid  %6.2f s", p.stage, p.boxes_done,
                      p.boxes_pending, p.valid, p.seconds);
         return true;
     };
@@ -62,6 +62,10 @@ certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const cer
                                  const certipose::inspection_task& task, const certipose_solve::arguments& args,
                                  certipose::solve_options options) {
     options.progress = progress_printer(args.quiet);
+    // Building the solver checks that the part is a closed solid (the occlusion policies need
+    // one): seconds for a large mesh, so say so on a terminal.
+    certipose_program::stage_line stage("certipose-solve", args.quiet || args.occlusion == certipose_solve::occlusion_mode::none);
+    stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid, then solving");
     certipose::solve_result<I> r;
     switch (args.occlusion) {
         case certipose_solve::occlusion_mode::aabb:
@@ -112,9 +116,9 @@ void warn_if_tiny(const certipose_solve::arguments& args, const certipose::calib
     const double boxes = area / (args.position_eps * args.position_eps);
     if (std::isfinite(boxes) && boxes > 10.0 * static_cast<double>(options.max_boxes))
         std::fprintf(stderr,
-                     "certipose-solve: warning: --position-eps %s is tiny for this camera (in focus from %.3g to %.3g m, "
+                     "certipose-solve: warning: --position-eps %s is small for this camera (in focus from %.3g to %.3g m, "
                      "part %.3g m across): about %.1e boundary boxes, over the %zu-box budget; the run will end on "
-                     "the budget (raise --position-eps, or set --max-boxes / --time-limit)\n",
+                     "the budget (raise --position-eps or --max-boxes, or set --time-limit)\n",
                      certipose::detail::format_double(args.position_eps).c_str(), range.min, range.max,
                      mesh.bbox().diagonal().norm(), boxes, options.max_boxes);
 }
@@ -135,7 +139,10 @@ int main(int argc, char** argv) {
     const interruption signals;  // SIGINT/SIGTERM: stop the solve, write nothing, exit 130/143
 
     try {
+        certipose_program::stage_line stage("certipose-solve", args.quiet);
+        stage.show("reading " + args.mesh.string());
         const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+        stage.done();
         (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
         const certipose::camera_task input = certipose::read_camera_task(args.camera);
 

@@ -142,6 +142,31 @@ inline std::string one_line(std::string s) {
 /// True when progress should be drawn: stderr is a terminal and the user did not ask for quiet.
 inline bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
 
+/// What the program is doing before its progress line starts (reading and checking a large
+/// mesh takes seconds: ~15 s for 10^6 faces, most of it CGAL's self-intersection test), on one
+/// stderr line rewritten in place; only when stderr is a terminal. `done()` clears it.
+class stage_line {
+public:
+    stage_line(const char* program, bool quiet) : program_(program), on_(show_progress(quiet)) {}
+    stage_line(const stage_line&) = delete;
+    stage_line& operator=(const stage_line&) = delete;
+    ~stage_line() { done(); }
+    void show(const std::string& what) {
+        if (!on_) return;
+        std::fprintf(stderr, "\r\033[K%s: %s...", program_, what.c_str());
+        std::fflush(stderr);
+        shown_ = true;
+    }
+    void done() {
+        if (shown_) std::fprintf(stderr, "\r\033[K");
+        shown_ = false;
+    }
+
+private:
+    const char* program_;
+    bool on_, shown_ = false;
+};
+
 /// "1h02m", "3m07s", "12.3s".
 inline std::string duration_text(double s) {
     char buf[32];
