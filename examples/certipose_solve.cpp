@@ -7,8 +7,9 @@
 //
 // Reads the mesh and the camera/task JSON, solves, writes the result JSON (and the PLY): both
 // committed together or neither (io/output_files.hpp), never over an input. SIGINT/SIGTERM stop
-// the solve through its cancellation; nothing is written and the exit code is 130/143. Every error prints one line "certipose-solve: ..." on stderr; exit codes:
-// 0 success, 1 bad input file / solver / write error, 2 bad command line (docs/io.md).
+// the solve through its cancellation; nothing is written and the exit code is 130/143. Every
+// error prints one line "certipose-solve: ..." on stderr; exit codes: 0 success, 1 bad input
+// file / solver / write error, 2 bad command line (docs/errors.md).
 //
 // The pipeline is `certipose::pose_solver` with the defaults (Boost intervals, the paper's
 // constraints with HC4, largest-first, the paper's orientation) and the occlusion policy chosen
@@ -106,9 +107,9 @@ std::string advice(certipose::boundary_reason why, const certipose_solve::argume
     return smaller_eps;
 }
 
-/// A warning before a run that can only end on its budget: paving the in-focus shell (radii d_min
-/// to d_max around the facet) at width ε takes about (its volume) / ε³ boxes, and its two
-/// boundary surfaces alone about (their area) / ε² undecided ones.
+/// A warning before a run that can only end on its budget: the two boundary spheres of the
+/// in-focus shell (radii d_min and d_max about the facet) alone leave about (their area) / ε²
+/// undecided boxes of width ε.
 void warn_if_tiny(const certipose_solve::arguments& args, const certipose::calibrated_camera& camera,
                   const certipose::triangle_mesh& mesh, const certipose::solve_options& options) {
     const certipose::distance_range range = camera.distance_range();
@@ -155,10 +156,11 @@ int main(int argc, char** argv) {
                 std::chrono::duration<double>(*args.time_limit_seconds));
         options.validate();
 
-        if (!args.quiet) warn_if_tiny(args, input.calibrated(), mesh, options);
+        const certipose::calibrated_camera camera = input.calibrated();
+        if (!args.quiet) warn_if_tiny(args, camera, mesh, options);
 
         options.stop = signals.token();
-        const auto result = solve(mesh, input.calibrated(), input.task, args, options);
+        const auto result = solve(mesh, camera, input.task, args, options);
         const auto interrupted = [&] {
             std::cerr << "certipose-solve: interrupted by " << interruption::name(signals.signal())
                       << "; nothing written\n";

@@ -36,6 +36,9 @@ struct read_options {
 /// unreadable, CGAL cannot parse it, or it holds no face; certipose::mesh_error (message
 /// prefixed with the path) when a polygon is not a triangle or the mesh fails triangle_mesh's
 /// validation or welding; certipose::invalid_argument for bad options. Faces keep file order.
+/// CGAL's PLY reader writes its complaints to std::cerr: while a .ply file is parsed, std::cerr
+/// is redirected and what it printed becomes part of the io_error (so do not log to std::cerr
+/// from another thread during that call).
 triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& opt = {});
 
 }  // namespace certipose
@@ -99,10 +102,10 @@ struct stl_point {
     }
 };
 
-/// Captures what CGAL's readers print on std::cerr (its PLY reader prints "Error: incorrect file
-/// format line 1 of file" before returning false) so that the caller sees one line, ours, with
-/// CGAL's words folded into it. std::cerr is process-wide: another thread writing to it while a
-/// mesh is read has its text captured too (and dropped), the price of a quiet reader.
+/// Captures what CGAL's PLY reader prints on std::cerr ("Error: incorrect file format line 1 of
+/// file", whatever its `verbose` flag says) so that the caller sees one line, ours, with CGAL's
+/// words folded into it. std::cerr is process-wide, so the capture covers the PLY reader only
+/// (the other readers print nothing unless asked to); read_mesh's comment says so.
 class captured_cerr {
 public:
     captured_cerr() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
@@ -253,7 +256,6 @@ CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const 
     bool ok = false;
     std::string cgal_says;
     try {
-        const detail::io::captured_cerr quiet;
         if (ext == ".stl") {
             std::vector<detail::io::stl_point> points;
             ok = CGAL::IO::read_STL(name, points, polygons);
@@ -265,12 +267,14 @@ CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const 
                 ok = CGAL::IO::read_OFF(name, points, polygons);
             else if (ext == ".obj")
                 ok = CGAL::IO::read_OBJ(name, points, polygons);
-            else
+            else {
+                const detail::io::captured_cerr quiet;
                 ok = CGAL::IO::read_PLY(name, points, polygons);
+                cgal_says = quiet.one_line();
+            }
             soup.vertices.reserve(points.size());
             for (const auto& p : points) soup.vertices.emplace_back(p.x(), p.y(), p.z());
         }
-        cgal_says = quiet.one_line();
     } catch (const std::exception& e) {  // e.g. bad_alloc on an absurd vertex count
         throw io_error(name, "read_mesh: cannot parse " + name + ": " + e.what());
     }
