@@ -17,23 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import cm, colors  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
-
-def read_off(path):
-    with open(path) as f:
-        words = [w for line in f for w in line.split("#", 1)[0].split()]
-    assert words[0] == "OFF", "not an OFF file"
-    nv, nf = int(words[1]), int(words[2])
-    it = 4
-    verts = []
-    for _ in range(nv):
-        verts.append(tuple(float(w) for w in words[it:it + 3]))
-        it += 3
-    faces = []
-    for _ in range(nf):
-        n = int(words[it])
-        faces.append(tuple(int(w) for w in words[it + 1:it + 1 + n]))
-        it += 1 + n
-    return verts, faces
+from render_case_study import read_off  # noqa: E402  (the OFF reader of the other docs picture)
 
 
 def main(off_path, run_dir, out_path):
