@@ -562,6 +562,38 @@ TEST_CASE("the sample part's facet of interest behind its boss: a wall touching 
     CHECK(confirmed(S, above, foi, visibility::visible, rng, "test"));
 }
 
+TEST_CASE("occlusion_effort::visible_only: the same VISIBLE, PARTIAL for what full effort calls OCCLUDED") {
+    const auto part = make_sample_part();
+    const std::size_t foi = part.facet_of_interest;
+    const aabb_occlusion fast(part.mesh);
+    const double z = part.mesh.facet(foi).v[0].z();
+    const box3 hidden(V(0.45, -0.05, std::nextafter(z, 1.0)), V(0.55, 0.05, 0.15));
+    const box3 above(V(-0.1, -0.05, 0.4), V(0.0, 0.05, 0.5));
+    CHECK(fast.classify(hidden, foi, occlusion_effort::full) == visibility::occluded);
+    CHECK(fast.classify(hidden, foi, occlusion_effort::visible_only) == visibility::partial);
+    CHECK(fast.classify(above, foi, occlusion_effort::visible_only) == visibility::visible);
+    // Every facet against Figure 5's box and the two above: VISIBLE exactly where full effort
+    // says so; OCCLUDED only without a search (e.g. a box behind the facet plane), else PARTIAL.
+    const box3 fig5(V(-0.1, -0.1, 0.25), V(0.1, 0.1, 0.3));
+    std::size_t visible = 0, occluded = 0, relabelled = 0;
+    for (std::size_t k = 0; k < 3 * part.mesh.num_faces(); ++k) {
+        const std::size_t f = k % part.mesh.num_faces();
+        const box3& box = k < part.mesh.num_faces() ? fig5 : k < 2 * part.mesh.num_faces() ? hidden : above;
+        const visibility full = fast.classify(box, f), quick = fast.classify(box, f, occlusion_effort::visible_only);
+        CAPTURE(k);
+        CHECK((full == visibility::visible) == (quick == visibility::visible));
+        if (full == visibility::partial) CHECK(quick == visibility::partial);
+        if (quick == visibility::occluded) CHECK(full == visibility::occluded);
+        visible += full == visibility::visible;
+        occluded += full == visibility::occluded;
+        relabelled += full == visibility::occluded && quick == visibility::partial;
+    }
+    MESSAGE(visible << " visible, " << occluded << " occluded (box, facet) pairs, " << relabelled
+                    << " of them partial with visible_only");
+    CHECK(visible > 0);
+    CHECK(relabelled > 0);
+}
+
 TEST_CASE("facets with coplanar neighbours and boxes at grazing angles agree with sampling") {
     // The sample part's top surface is flat: every top facet has coplanar neighbours. Boxes
     // just above the top plane, far away, see the top facets at grazing angles.

@@ -146,3 +146,58 @@ TEST_CASE("BOUNDARY boxes say which constraint left them undecided") {
     CHECK_FALSE(unchecked.stats.occlusion_checked);
     CHECK(unchecked.boundary_because(boundary_reason::occlusion) == 0);
 }
+
+namespace {
+/// aabb_occlusion without the occlusion_effort overload: the solver then searches for an
+/// OCCLUDED certificate on every blocked box, leaves included.
+struct full_effort_occlusion {
+    aabb_occlusion inner;
+    explicit full_effort_occlusion(const triangle_mesh& m) : inner(m) {}
+    full_effort_occlusion(const triangle_mesh& m, std::span<const triangle_mesh> o) : inner(m, o) {}
+    template <Interval I>
+    visibility classify(const position_box<I>& box, std::size_t facet) const {
+        return inner.classify(box, facet);
+    }
+};
+
+std::vector<std::array<double, 6>> sorted_boxes(const std::vector<position_box<boost_interval>>& boxes) {
+    std::vector<std::array<double, 6>> out;
+    for (const auto& b : boxes)
+        out.push_back({lower(b[0]), upper(b[0]), lower(b[1]), upper(b[1]), lower(b[2]), upper(b[2])});
+    std::sort(out.begin(), out.end());
+    return out;
+}
+}  // namespace
+
+TEST_CASE("the position stage's shortcuts change no VALID box") {
+    // Boxes inside a set-certified box skip the set, and boxes the bisector will not split skip
+    // the OCCLUDED search: neither may change what is VALID. Compared with full effort
+    // everywhere, and with a breadth-first buffer (which breaks the chain of certified
+    // ancestors far more often than depth-first). The position stage alone: a whole pipeline
+    // per variant would cost a minute of compile time each.
+    using I = boost_interval;
+    using set = paper_position_constraints<I>;
+    const thin_lens_camera camera(design_camera_parameters());
+    const inspection_task task{.min_view_angle = 0.35};
+    const distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
+    const aabb_occlusion fast(part().mesh);
+    const full_effort_occlusion full(part().mesh);
+    for (const std::size_t f : {part().facet_of_interest, std::size_t{0}, std::size_t{1000}, std::size_t{1777}}) {
+        CAPTURE(f);
+        const position_problem problem{part().mesh.facet(f), range, task};
+        const auto a = pave_positions<I, set>(problem, f, fast, {}, 0.1);
+        const auto b = pave_positions<I, set>(problem, f, full, {}, 0.1);
+        const auto c = pave_positions<I, set, contraction::hc4, largest_first, breadth_first>(problem, f, fast, {}, 0.1);
+        REQUIRE(a.boxes.stats.reason == termination::completed);
+        CHECK(a.boxes.valid.size() > 0);
+        CHECK(sorted_boxes(a.boxes.valid) == sorted_boxes(b.boxes.valid));
+        CHECK(sorted_boxes(a.boxes.valid) == sorted_boxes(c.boxes.valid));
+        // Leaves full effort proves OCCLUDED are BOUNDARY (reason occlusion) here instead.
+        CHECK(a.boxes.boundary.size() >= b.boxes.boundary.size());
+        const auto occluded_reasons = [](const auto& r) {
+            return std::count(r.boundary_reasons.begin(), r.boundary_reasons.end(), boundary_reason::occlusion);
+        };
+        CHECK(a.boxes.boundary.size() - b.boxes.boundary.size() == std::size_t(occluded_reasons(a) - occluded_reasons(b)));
+        CHECK(sorted_boxes(a.boxes.boundary) == sorted_boxes(c.boxes.boundary));
+    }
+}

@@ -51,17 +51,22 @@ public:
     aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders);
 
     /// Classifies every camera position of `box` against facet `facet` of the part. Throws
-    /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box).
+    /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box). With
+    /// `occlusion_effort::visible_only` a blocked box is PARTIAL, without the search for an
+    /// OCCLUDED certificate (occlusion/concept.hpp).
     template <Interval I>
-    visibility classify(const position_box<I>& box, std::size_t facet) const {
-        return classify(detail::occ::box_bounds(box, "aabb_occlusion"), facet);
+    visibility classify(const position_box<I>& box, std::size_t facet,
+                        occlusion_effort effort = occlusion_effort::full) const {
+        return classify(detail::occ::box_bounds(box, "aabb_occlusion"), facet, effort);
     }
 
     /// The same on a box given by double bounds.
-    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet) const;
+    visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet,
+                        occlusion_effort effort = occlusion_effort::full) const;
 
     /// `classify`, also reporting how the answer was reached (for tests and benchmarks).
-    visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info) const;
+    visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info,
+                       occlusion_effort effort = occlusion_effort::full) const;
 
     /// At most this many distinct planes of blocking triangles are tried as walls.
     static constexpr std::size_t max_wall_planes = 8;

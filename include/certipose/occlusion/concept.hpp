@@ -41,6 +41,13 @@ constexpr std::string_view to_string(visibility v) noexcept {
     return "?";
 }
 
+/// How hard `classify` works on a box that is not VISIBLE. `full` looks for a certificate of
+/// OCCLUDED (it prunes the paving: an occluded box is not bisected further); `visible_only` may
+/// answer PARTIAL without looking, for boxes the paver will not bisect anyway — there OCCLUDED
+/// and PARTIAL both keep the box out of the VALID set, and the search is most of the cost of a
+/// blocked box (docs/occlusion.md). VISIBLE is decided the same way either way.
+enum class occlusion_effort { full, visible_only };
+
 /// A policy built from the scene (`P(part)` or `P(part, occluders)`) whose const `classify`
 /// takes a position box over interval type `I` and a facet index of the part. Models say in
 /// their documentation whether one object may be shared by several threads (all of
@@ -51,6 +58,14 @@ concept OcclusionPolicy =
     std::constructible_from<P, const triangle_mesh&, std::span<const triangle_mesh>> &&
     requires(const P& policy, const position_box<I>& box, std::size_t facet) {
         { policy.classify(box, facet) } -> std::same_as<visibility>;
+    };
+
+/// Whether a policy takes an `occlusion_effort` (optional: the solver passes `visible_only` for
+/// boxes it will not bisect when the policy does, and calls plain `classify` otherwise).
+template <class P, class I>
+concept EffortAwareOcclusionPolicy =
+    OcclusionPolicy<P, I> && requires(const P& policy, const position_box<I>& box, std::size_t facet) {
+        { policy.classify(box, facet, occlusion_effort::full) } -> std::same_as<visibility>;
     };
 
 /// Whether a policy decides constraint 6 at all: true unless it declares
