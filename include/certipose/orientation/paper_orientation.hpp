@@ -16,19 +16,27 @@
 //     γ tilts the axis by the same angle.
 //  3. Allowable β (§6.4.2): the projection constraints ℓ_k·Rz(−β)·[b]_v ≥ 0 (vertex inside
 //     each image side, division-free), [b]_v = Rx(−[γ])·Rz(−[φ])·([v] − [p]), contracted from
-//     [−π, π] with HC4 (and ACID when `beta_acid`; the paper uses both). That hull is an outer
-//     approximation, in practice the whole circle; past the paper it is narrowed to the arc of
-//     rolls about β = 0 that keeps every vertex inside the image at the nominal aim.
+//     [−π, π] with HC4 (and ACID; the paper uses both). That hull is an outer approximation, in
+//     practice the whole circle: on ~85 000 candidate boxes of the sample part and four real
+//     meshes HC4 never narrowed [−π, π], and it cost 7 % of a whole-part run, so `orient` skips
+//     it unless `beta_hc4` / `beta_acid` ask for it (`paper_candidate` runs it by default). Past
+//     the paper, [β] is narrowed to the arc of rolls about β = 0 that keeps every vertex inside
+//     the image at the nominal aim.
 //  4. Certification: the paper's box is an approximation (it bounds the vertices over some
 //     position of the box, and offsets of ZXZ angles are not camera-frame offsets), so the 6D
 //     box is proven with `certify_fov`, by internal subdivision when one evaluation is not
-//     enough (the hull of a certified tiling is certified). When that fails the box shrinks
-//     toward the nominal aim (halving, down to a box narrower than ε_o; β stays whole when the
-//     roll is free, since the roll-free cone test does not care), the largest certified scale
-//     is refined by bisection, and then each angle alone is widened back toward the paper's
-//     box as far as certification allows. So each position box yields one certified
-//     box, containing the nominal aim whenever the paper's box does, as wide as the search can
-//     certify — the installation tolerance in aim — or nothing, and the solver bisects [p].
+//     enough (the hull of a certified tiling is certified). The paper's box itself is not
+//     tried: its φ/γ edges are where a vertex reaches the image border from some position of
+//     the box, so a proof over the whole box fails (it never succeeded on ~200 000 position
+//     boxes of the sample part and three real meshes). The box shrinks toward the nominal aim
+//     (halving from one half, down to a box narrower than ε_o; β stays whole when the roll is
+//     free, since the roll-free cone test does not care), the largest certified scale is
+//     refined by bisection, and then β alone is widened back toward the paper's [β] as far as
+//     certification allows (φ and γ alone are not: at the refined scale they are what fails,
+//     and widening either never certified in the same measurement). So each position box yields
+//     one certified box, containing the nominal aim whenever the paper's box does, as wide as the
+//     search can certify — the installation tolerance in aim — or nothing, and the solver
+//     bisects [p].
 // Near the ZXZ singularity (γ_nom ≈ 0 or π, looking straight down or up the z axis) φ and β are
 // coupled (at γ = 0 only φ + β matters) and the φ offsets blow up as 1/sin γ: they are capped at
 // ±π. Boxes stay sound (certification bounds the axis by its angle from the pole there) but the
@@ -85,14 +93,25 @@ struct paper_orientation_options {
     std::size_t tiling_budget = 8;
     /// Bisection steps on the scale factor between the largest certified scale and the next.
     int refine_steps = 2;
-    /// Afterwards, bisection steps widening each angle alone toward the paper's box (0: off).
+    /// Afterwards, bisection steps widening [β] alone toward the paper's [β] (0: off).
     int widen_steps = 1;
     /// Hard cap of `certify_fov` evaluations per position box.
     std::size_t max_certifications = 256;
-    /// Follow HC4 by ACID when contracting [β] (the paper's "HC4 and ACID"). Off by default:
-    /// it costs ~20× the HC4 pass (trigonometric shaving), and the hull it sharpens is an
-    /// outer approximation that certification decides anyway.
+    /// Contract [β] with HC4 over the projection constraints (§6.4.2) before the roll arc
+    /// narrows it. Off by default: it never narrowed [−π, π] in our measurements (header
+    /// comment), and certification decides the box anyway.
+    bool beta_hc4 = false;
+    /// Follow HC4 by ACID when contracting [β] (the paper's "HC4 and ACID"; implies `beta_hc4`).
+    /// Off by default: it costs ~20× the HC4 pass (trigonometric shaving), and the hull it
+    /// sharpens is an outer approximation that certification decides anyway.
     bool beta_acid = false;
+};
+
+/// How `paper_candidate` contracts [β] from [−π, π] before the roll arc narrows it.
+enum class beta_contraction {
+    none,     ///< the roll arc alone
+    hc4,      ///< HC4 over the twelve projection constraints (the paper)
+    hc4_acid  ///< HC4, then ACID (the paper's "HC4 and ACID")
 };
 
 namespace detail::orientation {
@@ -199,8 +218,7 @@ std::optional<std::pair<double, double>> roll_arc(const position_box<I>& positio
     std::array<Eigen::Vector3d, 4> l;
     for (std::size_t k = 0; k < 4; ++k)
         for (int j = 0; j < 3; ++j) l[k][j] = mid(frustum.sides()[k].l[static_cast<std::size_t>(j)]);
-    const auto fits = [&](double beta) {
-        const double cb = std::cos(beta), sb = std::sin(beta);
+    const auto fits_cs = [&](double cb, double sb) {
         for (const auto& lk : l) {
             const Eigen::Vector3d m(cb * lk.x() - sb * lk.y(), sb * lk.x() + cb * lk.y(), lk.z());
             for (std::size_t v = 0; v < 3; ++v)
@@ -208,13 +226,39 @@ std::optional<std::pair<double, double>> roll_arc(const position_box<I>& positio
         }
         return true;
     };
+    const auto fits = [&](double beta) { return fits_cs(std::cos(beta), std::sin(beta)); };
+    constexpr double step = std::numbers::pi / 32;
+    // cos and sin of the walk's steps, once (here, i.e. rounding to nearest, as computed inline
+    // before): most arcs walk all 64 steps, and their libm calls were most of this function.
+    static const std::array<std::array<double, 2>, 33> steps = [] {
+        std::array<std::array<double, 2>, 33> t{};
+        for (int i = 0; i <= 32; ++i) t[i] = {std::cos(i * step), std::sin(i * step)};
+        return t;
+    }();
+    // Most arcs are the whole circle (the facet is small in the image), and walking it costs 64
+    // tests. Every roll fits when, for each side k and vertex v, lz·c_z − ρ_k(‖c_xy‖ + ‖e_xy‖)
+    // − |lz|·e_z > 0 (ρ_k = ‖ℓ_k,xy‖, which Rz(β) keeps): the rotated ℓ_k has m·c ≥ lz·c_z −
+    // ρ_k‖c_xy‖ and |m|·e ≤ ρ_k‖e_xy‖ + |lz|·e_z. The margin, far above rounding, makes the walk
+    // agree: it would have found the whole circle too.
+    const auto every_roll_fits = [&] {
+        for (const auto& lk : l) {
+            const double rho = std::hypot(lk.x(), lk.y());
+            for (std::size_t v = 0; v < 3; ++v) {
+                const double cxy = std::hypot(c[v].x(), c[v].y()), exy = std::hypot(e[v].x(), e[v].y());
+                const double worst = lk.z() * c[v].z() - rho * (cxy + exy) - std::abs(lk.z()) * e[v].z();
+                const double scale = std::abs(lk.z()) * (std::abs(c[v].z()) + e[v].z()) + rho * (cxy + exy);
+                if (!(worst > 1e-9 * scale)) return false;
+            }
+        }
+        return true;
+    };
+    if (every_roll_fits()) return std::pair{-pi_lo, pi_lo};
     if (!fits(0.0)) return std::nullopt;
     const auto reach = [&](double sign) {
-        constexpr double step = std::numbers::pi / 32;
         double ok = 0.0;
         for (int i = 1; i <= 32; ++i) {
             const double t = i * step;
-            if (!fits(sign * t)) {
+            if (!fits_cs(steps[i][0], sign * steps[i][1])) {
                 double bad = t;
                 for (int j = 0; j < 4; ++j) {
                     const double m = 0.5 * (ok + bad);
@@ -234,14 +278,14 @@ std::optional<std::pair<double, double>> roll_arc(const position_box<I>& positio
 }  // namespace detail::orientation
 
 /// The box of §6.4 before certification: [φ], [γ] from the four-hyperplane system (HC4) and
-/// [β] from the projection constraints (HC4, then ACID if asked), narrowed to the roll arc
+/// [β] from the projection constraints (as `beta` says; HC4 by default), narrowed to the roll arc
 /// about β = 0 that fits at the nominal aim. Nothing when the facet cannot fit the field of
 /// view from every position of the box (the hyperplanes are farther apart than the FOV, or a
 /// vertex may lie beside or behind the nominal camera). Not certified.
 template <Interval I>
 std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f,
                                                   const fov_half_angles& fov, const fov_frustum<I>& frustum,
-                                                  bool beta_acid = false) {
+                                                  beta_contraction beta = beta_contraction::hc4) {
     using namespace detail::orientation;
     const auto aim = nominal_aim(position, f);
     if (!aim || is_empty(position)) return std::nullopt;
@@ -286,24 +330,26 @@ std::optional<orientation_box<I>> paper_candidate(const position_box<I>& positio
     box[0] = I(aim->phi + phi_lo, aim->phi + phi_hi);
     box[1] = I(aim->gamma - tilt_hi, aim->gamma - tilt_lo);
 
-    // [b]_v = Rx(−[γ])·Rz(−[φ])·(v − [p]) and the four image sides ℓ_k.
-    const I sp = sin(box[0]), cp = cos(box[0]), sg = sin(box[1]), cg = cos(box[1]);
-    std::array<std::array<I, 3>, 3> bv{};
-    for (std::size_t v = 0; v < 3; ++v) {
-        const std::array<I, 3> d{I(f.v[v].x()) - position[0], I(f.v[v].y()) - position[1],
-                                 I(f.v[v].z()) - position[2]};
-        const I cx = cp * d[0] + sp * d[1], cy = cp * d[1] - sp * d[0];
-        bv[v] = {cx, cg * cy + sg * d[2], cg * d[2] - sg * cy};
-    }
-    std::array<std::array<I, 3>, 4> sides{};
-    for (std::size_t k = 0; k < 4; ++k) sides[k] = frustum.sides()[k].l;
-    const beta_projection<I> beta(bv, sides);
     interval_box<I, 1> b = interval_box<I, 1>::from_bounds({{{-pi_lo, pi_lo}}});
-    beta.contract(b);
-    if (beta_acid && !is_empty(b)) acid(beta).contract(b);
-    if (is_empty(b)) return std::nullopt;
-    // HC4's [β] is an outer approximation over the whole box of positions and aims, in
-    // practice the whole circle. Past the paper: intersect it with the arc of rolls about β = 0
+    if (beta != beta_contraction::none) {
+        // [b]_v = Rx(−[γ])·Rz(−[φ])·(v − [p]) and the four image sides ℓ_k.
+        const I sp = sin(box[0]), cp = cos(box[0]), sg = sin(box[1]), cg = cos(box[1]);
+        std::array<std::array<I, 3>, 3> bv{};
+        for (std::size_t v = 0; v < 3; ++v) {
+            const std::array<I, 3> d{I(f.v[v].x()) - position[0], I(f.v[v].y()) - position[1],
+                                     I(f.v[v].z()) - position[2]};
+            const I cx = cp * d[0] + sp * d[1], cy = cp * d[1] - sp * d[0];
+            bv[v] = {cx, cg * cy + sg * d[2], cg * d[2] - sg * cy};
+        }
+        std::array<std::array<I, 3>, 4> sides{};
+        for (std::size_t k = 0; k < 4; ++k) sides[k] = frustum.sides()[k].l;
+        const beta_projection<I> projection(bv, sides);
+        projection.contract(b);
+        if (beta == beta_contraction::hc4_acid && !is_empty(b)) acid(projection).contract(b);
+        if (is_empty(b)) return std::nullopt;
+    }
+    // HC4's [β] (when run) is an outer approximation over the whole box of positions and aims,
+    // in practice the whole circle. Past the paper: intersect it with the arc of rolls about β = 0
     // that keeps every vertex inside the image from every position at the nominal aim.
     const auto arc = roll_arc(position, f, *aim, frustum);
     if (arc) {
@@ -317,8 +363,8 @@ std::optional<orientation_box<I>> paper_candidate(const position_box<I>& positio
 /// Same, for any camera model.
 template <Interval I, CameraModel C>
 std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f, const C& camera,
-                                                  bool beta_acid = false) {
-    return paper_candidate(position, f, camera.fov_half_angles(), fov_frustum<I>(camera), beta_acid);
+                                                  beta_contraction beta = beta_contraction::hc4) {
+    return paper_candidate(position, f, camera.fov_half_angles(), fov_frustum<I>(camera), beta);
 }
 
 /// The default orientation policy (see the header comment). Stateless: `orient` is const and
@@ -348,7 +394,10 @@ public:
         const rounding_guard<I> guard{};
         const fov_frustum<I> frustum(camera);
         const auto aim = nominal_aim(position, f);
-        const auto cand = paper_candidate(position, f, camera.fov_half_angles(), frustum, options_.beta_acid);
+        const beta_contraction beta = options_.beta_acid  ? beta_contraction::hc4_acid
+                                      : options_.beta_hc4 ? beta_contraction::hc4
+                                                          : beta_contraction::none;
+        const auto cand = paper_candidate(position, f, camera.fov_half_angles(), frustum, beta);
         if (!aim || !cand) return out;
 
         const std::array<double, 3> nominal{aim->phi, aim->gamma, aim->beta};
@@ -378,8 +427,8 @@ public:
             };
             std::optional<orientation_box<I>> best;
             double s_ok = 1.0, s_fail = 1.0;
-            if (certified(*cand)) return *cand;
-            // Halve toward the centre until certified, or until the box is narrower than ε_o.
+            // Halve toward the centre until certified, or until the box is narrower than ε_o
+            // (from s = 1/2: the paper's box itself does not certify, see the header comment).
             for (double s = 0.5; budget_left() && s > 1e-6; s *= 0.5) {
                 const auto b = scaled(s);
                 if (certified(b)) {
@@ -395,14 +444,13 @@ public:
                 if (certified(b)) best = b, s_ok = s;
                 else s_fail = s;
             }
-            // Widen each angle alone toward the paper's box (β first: it is often free).
-            for (const std::size_t j : {std::size_t{2}, std::size_t{0}, std::size_t{1}}) {
-                if (best->x[j] == (*cand)[j]) continue;
+            // Widen β alone toward the paper's [β] (the whole of it usually certifies).
+            if (best->x[2] != (*cand)[2]) {
                 double lo = s_ok, hi = 1.0;
                 for (int i = 0; i <= options_.widen_steps && budget_left(); ++i) {
                     const double s = i == 0 ? hi : 0.5 * (lo + hi);
                     auto b = *best;
-                    b[j] = I(centre[j] + s * (lower((*cand)[j]) - centre[j]), centre[j] + s * (upper((*cand)[j]) - centre[j]));
+                    b[2] = I(centre[2] + s * (lower((*cand)[2]) - centre[2]), centre[2] + s * (upper((*cand)[2]) - centre[2]));
                     if (certified(b)) {
                         best = b, lo = s;
                         if (i == 0) break;

@@ -50,6 +50,10 @@ inline bounds periodic_bounds_from(double l, double u, double fl, double fu, dou
     constexpr double huge = 1e9;
     if (!(std::abs(l) < huge && std::abs(u) < huge) || u - l >= 2.0 * pi - 1e-6) return {-1.0, 1.0};
     double lo = widen_down(std::min(fl, fu)), hi = widen_up(std::max(fl, fu));
+    // A point: the widened libm value encloses it, extremum or not (near ±1 the widening reaches
+    // ±1 already). Most calls of certify_fov are points (box centres), and the loop below is
+    // most of their cost.
+    if (l == u) return {std::max(lo, -1.0), std::min(hi, 1.0)};
     const double k0 = std::floor((l - phase) / pi) - 1.0;
     const double k1 = std::ceil((u - phase) / pi) + 1.0;
     for (double k = k0; k <= k1; k += 1.0) {
