@@ -576,17 +576,20 @@ TEST_CASE("occlusion_effort::visible_only: the same VISIBLE, PARTIAL for what fu
     // says so; OCCLUDED only without a search (e.g. a box behind the facet plane), else PARTIAL.
     const box3 fig5(V(-0.1, -0.1, 0.25), V(0.1, 0.1, 0.3));
     std::size_t visible = 0, occluded = 0, relabelled = 0;
-    for (std::size_t k = 0; k < 3 * part.mesh.num_faces(); ++k) {
-        const std::size_t f = k % part.mesh.num_faces();
-        const box3& box = k < part.mesh.num_faces() ? fig5 : k < 2 * part.mesh.num_faces() ? hidden : above;
-        const visibility full = fast.classify(box, f), quick = fast.classify(box, f, occlusion_effort::visible_only);
-        CAPTURE(k);
-        CHECK((full == visibility::visible) == (quick == visibility::visible));
-        if (full == visibility::partial) CHECK(quick == visibility::partial);
-        if (quick == visibility::occluded) CHECK(full == visibility::occluded);
-        visible += full == visibility::visible;
-        occluded += full == visibility::occluded;
-        relabelled += full == visibility::occluded && quick == visibility::partial;
+    for (const box3* box : {&fig5, &hidden, &above}) {
+        const Eigen::RowVector3d lo = box->min().transpose();
+        CAPTURE(lo);
+        for (std::size_t f = 0; f < part.mesh.num_faces(); ++f) {
+            const visibility full = fast.classify(*box, f);
+            const visibility quick = fast.classify(*box, f, occlusion_effort::visible_only);
+            CAPTURE(f);
+            CHECK((full == visibility::visible) == (quick == visibility::visible));
+            if (full == visibility::partial) CHECK(quick == visibility::partial);
+            if (quick == visibility::occluded) CHECK(full == visibility::occluded);
+            visible += full == visibility::visible;
+            occluded += full == visibility::occluded;
+            relabelled += full == visibility::occluded && quick == visibility::partial;
+        }
     }
     MESSAGE(visible << " visible, " << occluded << " occluded (box, facet) pairs, " << relabelled
                     << " of them partial with visible_only");

@@ -373,7 +373,6 @@ TEST_CASE_TEMPLATE("roll_arc: the whole circle only where every roll keeps the f
 TEST_CASE_TEMPLATE("paper_orientation: HC4 on [beta] is optional and its boxes are as sound", I,
                    CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
     const auto cam = design_camera();
-    const fov_frustum<I> frustum(cam);
     const paper_orientation fast, paper(paper_orientation_options{.beta_hc4 = true});
     std::mt19937_64 rng(78);
     std::size_t same = 0, both = 0, failures = 0;
