@@ -34,7 +34,7 @@ void run(benchmark::State& state) {
     for (auto _ : state) {
         auto r = certipose::pave_positions<I, certipose::paper_position_constraints<I>>(
             pb, part().facet_of_interest, occlusion, {}, 0.1);
-        valid = r.boxes.valid.size(), boundary = r.boxes.boundary.size(), tests = r.occlusion_tests;
+        valid = r.boxes.valid.size(), boundary = r.boxes.boundary.size(), tests = r.counters.occlusion_tests;
         benchmark::DoNotOptimize(r);
     }
     state.counters["valid"] = static_cast<double>(valid);

@@ -52,7 +52,8 @@ struct arguments {
     double position_eps = 0.1, orientation_eps = 0.38, scale = 1.0;
     std::size_t threads = 0;
     std::string facets;
-    bool boundary = false, quiet = false;
+    bool boundary = false, quiet = false, paper_paving = false, grow = false;
+    std::optional<double> refine;
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes;
     std::optional<double> facet_time_limit, time_limit;
@@ -64,8 +65,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "DIR/summary.json and DIR/boxes.jsonl (DESIGN.md section 6).",
                  "certipose-part"};
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
-        facet_time, time_limit, max_boxes, occlusion = "aabb";
-    bool boundary = false, quiet = false;
+        facet_time, time_limit, max_boxes, refine, occlusion = "aabb";
+    bool boundary = false, quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
     app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")->type_name("METRES")->required();
@@ -80,6 +81,10 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--facet-time-limit", facet_time, "time budget of each facet")->type_name("SECONDS");
     app.add_option("--time-limit", time_limit, "time budget of the whole run")->type_name("SECONDS");
     app.add_option("--max-boxes", max_boxes, "box budget of the whole run (facets in order)")->type_name("N");
+    app.add_flag("--paper-paving", paper_paving,
+                 "pave as the paper does: bisect partly valid boxes, no inner contraction, occlusion cuts or corner boxes");
+    app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
+    app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
     const auto fail = [&](const std::string& message) {
         if (this_rank == 0) std::cerr << "certipose-part: error: " << one_line(message) << " (run with --help for usage)\n";
@@ -111,6 +116,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!per_facet_boxes.empty()) a.max_boxes_per_facet = parse_count("--max-boxes-per-facet", per_facet_boxes, 1);
         if (!max_boxes.empty()) a.max_boxes = parse_count("--max-boxes", max_boxes, 1);
         if (!facet_time.empty()) a.facet_time_limit = parse_double("--facet-time-limit", facet_time, "a positive finite number of seconds");
+        if (!refine.empty()) a.refine = parse_double("--refine", refine, "a positive finite number of seconds");
+        a.paper_paving = paper_paving;
+        a.grow = grow;
         if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
         std::error_code ec;
         if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec))
@@ -160,6 +168,9 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.facet.orientation_eps = args.orientation_eps;
     if (args.max_boxes_per_facet) opt.facet.max_boxes = *args.max_boxes_per_facet;
     if (args.facet_time_limit) opt.facet.time_limit = seconds(*args.facet_time_limit);
+    opt.facet.inner_contraction = opt.facet.occlusion_cuts = opt.facet.leaf_corner_boxes = !args.paper_paving;
+    if (args.refine) opt.facet.refine = certipose::refinement{.time_limit = seconds(*args.refine)};
+    if (args.grow) opt.facet.grow = certipose::growth_options{};
     if (args.time_limit) opt.time_limit = seconds(*args.time_limit);
     opt.max_boxes = args.max_boxes;
     opt.threads = args.threads;

@@ -154,6 +154,12 @@ int main(int argc, char** argv) {
         if (args.time_limit_seconds)
             options.time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                 std::chrono::duration<double>(*args.time_limit_seconds));
+        options.inner_contraction = options.occlusion_cuts = options.leaf_corner_boxes = !args.paper_paving;
+        if (args.refine_seconds)
+            options.refine = certipose::refinement{
+                .time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                    std::chrono::duration<double>(*args.refine_seconds))};
+        if (args.grow) options.grow = certipose::growth_options{};
         options.validate();
 
         const certipose::calibrated_camera camera = input.calibrated();
@@ -188,6 +194,16 @@ int main(int argc, char** argv) {
                         st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests);
             std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
                         st.orientation_certifications);
+            if (st.inner_pieces + st.occlusion_pieces > 0)
+                std::printf("  carved off          %zu pieces by inner contraction, %zu VALID pieces by occlusion cuts\n",
+                            st.inner_pieces, st.occlusion_pieces);
+            if (st.refinement_stopped)
+                std::printf("  refinement          stopped by its time budget (boxes not refined yet are boundary)\n");
+            if (args.grow)
+                std::printf("  growth            %8.3f s  (%zu merges, %zu boxes widened)\n", st.seconds_growth, st.merges,
+                            st.grown);
+            std::printf("  certified volume    %.4g m^3 of positions (boundary %.4g m^3)\n", st.valid_volume,
+                        st.boundary_volume);
             if (st.boundary > 0)
                 std::printf("  boundary boxes undecided on: %s\n", certipose::boundary_summary(st).c_str());
             if (st.reason != certipose::termination::completed)

@@ -61,6 +61,9 @@ struct arguments {
     double scale = 1.0;            ///< --scale: mesh coordinates × S (e.g. 0.001 for mm)
     std::optional<std::size_t> max_boxes;               ///< --max-boxes budget
     std::optional<double> time_limit_seconds;           ///< --time-limit budget
+    bool paper_paving = false;     ///< --paper-paving: no inner contraction, occlusion cuts or corner boxes
+    std::optional<double> refine_seconds;               ///< --refine: anytime refinement budget
+    bool grow = false;             ///< --grow: widen the VALID boxes
     bool quiet = false;            ///< --quiet: no summary, no progress
 };
 
@@ -87,8 +90,8 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                  "DESIGN.md section 6 and optionally a PLY of the boxes.",
                  "certipose-solve"};
     std::string mesh, camera, output, ply, facet, position_eps, orientation_eps, scale,
-        max_boxes, time_limit, occlusion = "aabb";
-    bool quiet = false;
+        max_boxes, time_limit, refine, occlusion = "aabb";
+    bool quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")
         ->type_name("PART")
         ->required()
@@ -121,6 +124,12 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
         ->type_name("N");
     app.add_option("--time-limit", time_limit, "stop after SECONDS (result marked deadline)")
         ->type_name("SECONDS");
+    app.add_flag("--paper-paving", paper_paving,
+                 "pave as the paper does: bisect partly valid boxes, no inner contraction, occlusion cuts or corner boxes");
+    app.add_option("--refine", refine,
+                   "keep refining below position-eps, largest undecided box first, for SECONDS")
+        ->type_name("SECONDS");
+    app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
 
     const auto fail = [&](const std::string& message) {
@@ -172,6 +181,10 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
         if (!time_limit.empty())
             a.time_limit_seconds =
                 detail::parse_double("--time-limit", time_limit, "a positive finite number of seconds");
+        if (!refine.empty())
+            a.refine_seconds = detail::parse_double("--refine", refine, "a positive finite number of seconds");
+        a.paper_paving = paper_paving;
+        a.grow = grow;
         a.quiet = quiet;
         return {std::move(a), exit_ok};
     } catch (const detail::usage_error& e) {

@@ -5,6 +5,7 @@
 #pragma once
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 #include <set>
 #include <tuple>
@@ -37,13 +38,18 @@ inline const sample_part& part() {
 
 struct sampling_report {
     std::size_t valid_boxes = 0, samples = 0, violations = 0;
+    std::size_t corners = 0;  ///< of `samples`, box corners
 };
 
-/// Samples `per_box` random poses in every VALID box and checks them against everything.
+/// Samples `per_box` random poses in every VALID box, and its 64 corners, and checks them
+/// against everything. Corners are judged with a relative tolerance of 1e-9: carved boxes touch
+/// a constraint boundary to within rounding (verify::tolerance); random poses are judged exactly.
+/// With `max_boxes`, a random subset of that many VALID boxes (each equally likely) is checked.
 template <class I, CameraModel Camera>
 sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh& mesh, const Camera& camera,
                                   distance_range range, double min_view_angle, std::size_t per_box,
-                                  std::uint32_t seed) {
+                                  std::uint32_t seed, bool with_corners = true,
+                                  std::size_t max_boxes = static_cast<std::size_t>(-1)) {
     sampling_report rep;
     const facet& f = mesh.facet(r.facet_index);
     const auto all = verify::occluders::of(mesh, r.facet_index);
@@ -57,19 +63,21 @@ sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh&
         bary.emplace_back(1 - a - b, a, b);
     }
     const auto targets = verify::facet_targets(f, bary);
-    for (const auto& cb : r.boxes) {
-        if (cb.cls != box_class::valid) continue;
+    std::vector<const classified_box<I>*> chosen;
+    for (const auto& cb : r.boxes)
+        if (cb.cls == box_class::valid) chosen.push_back(&cb);
+    if (chosen.size() > max_boxes) {
+        std::shuffle(chosen.begin(), chosen.end(), rng);
+        chosen.resize(max_boxes);
+    }
+    for (const auto* chosen_box : chosen) {
+        const auto& cb = *chosen_box;
         ++rep.valid_boxes;
         Eigen::AlignedBox3d region = f.bbox;
         region.extend(Eigen::Vector3d(lower(cb.box.position[0]), lower(cb.box.position[1]), lower(cb.box.position[2])));
         region.extend(Eigen::Vector3d(upper(cb.box.position[0]), upper(cb.box.position[1]), upper(cb.box.position[2])));
         const auto near = all.within(region);
-        for (std::size_t k = 0; k < per_box; ++k) {
-            verify::pose x;
-            for (int d = 0; d < 3; ++d) x.position[d] = draw(cb.box.position[d]);
-            x.phi = draw(cb.box.orientation[0]);
-            x.gamma = draw(cb.box.orientation[1]);
-            x.beta = draw(cb.box.orientation[2]);
+        const auto check = [&](const verify::pose& x) {
             const auto v = verify::check_pose(x, f, view, min_view_angle, &near, targets);
             ++rep.samples;
             if (v.any()) {
@@ -77,6 +85,40 @@ sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh&
                 if (rep.violations <= 3)
                     MESSAGE("violation (" << v.describe() << ") at p = " << x.position.transpose() << ", angles "
                                           << x.phi << " " << x.gamma << " " << x.beta);
+            }
+        };
+        for (std::size_t k = 0; k < per_box; ++k) {
+            verify::pose x;
+            for (int d = 0; d < 3; ++d) x.position[d] = draw(cb.box.position[d]);
+            x.phi = draw(cb.box.orientation[0]);
+            x.gamma = draw(cb.box.orientation[1]);
+            x.beta = draw(cb.box.orientation[2]);
+            check(x);
+        }
+        if (with_corners) {
+            std::array<std::array<double, 2>, 6> bounds{};
+            for (std::size_t d = 0; d < 3; ++d) {
+                bounds[d] = {lower(cb.box.position[d]), upper(cb.box.position[d])};
+                bounds[d + 3] = {lower(cb.box.orientation[d]), upper(cb.box.orientation[d])};
+            }
+            // The 64 corners: the position constraints (ray casting: the expensive part) once per
+            // position corner, the field of view at each of its 8 orientation corners.
+            const auto all_corners = verify::corners(bounds);
+            for (std::size_t pc = 0; pc < 8; ++pc) {
+                const auto pos = verify::check_position(all_corners[pc].position, f, view.d_min, view.d_max,
+                                                        min_view_angle, &near, targets, {1e-9});
+                for (std::size_t oc = 0; oc < 8; ++oc) {
+                    const verify::pose& x = all_corners[pc + 8 * oc];
+                    verify::violations v = pos;
+                    v.fov = !verify::fov_ok(x, f, view, {1e-9});
+                    ++rep.samples, ++rep.corners;
+                    if (v.any()) {
+                        ++rep.violations;
+                        if (rep.violations <= 3)
+                            MESSAGE("violation (" << v.describe() << ") at box corner p = " << x.position.transpose()
+                                                  << ", angles " << x.phi << " " << x.gamma << " " << x.beta);
+                    }
+                }
             }
         }
     }

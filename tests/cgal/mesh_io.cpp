@@ -265,9 +265,11 @@ TEST_CASE("read_mesh: errors name the file") {
             what = e.what();
         }
         std::cerr.rdbuf(old);
+        // The header is refused before CGAL reads it (CGAL 5.5's PLY reader overruns its buffers on
+        // some malformed headers: tests/fuzz/regressions/mesh_ply); nothing reaches stderr either way.
         CHECK(err.str().empty());
         CHECK(contains(what, "garbage2.ply"));
-        CHECK(contains(what, "incorrect file format"));
+        CHECK(contains(what, "expected 'ply'"));
     }
     SUBCASE("non-triangle face is rejected, not triangulated") {
         const fs::path p =

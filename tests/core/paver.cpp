@@ -824,3 +824,85 @@ TEST_CASE_TEMPLATE("two pavers on two threads share no state", I, CERTIPOSE_PAVE
     CHECK(sorted_bounds(r2.boundary) == sorted_bounds(reference_rr.boundary));
     CHECK(rounding_is_nearest());
 }
+
+#ifdef CERTIPOSE_PAVER_TEST_UNTYPED
+#include <certipose/solver/detail/carving.hpp>
+
+namespace {
+// An inner separator for the shell: contracts (HC4), then carves off what the complement
+// contraction proves inside the shell, as VALID pieces; its state counts the carvings above a
+// box (so the test can see the state travel to the halves and to pending pieces).
+struct shell_separator {
+    struct state {
+        int carvings = 0;
+        friend bool operator==(const state&, const state&) = default;
+    };
+    int deepest = 0;
+    verdict separate(interval_box<certipose::boost_interval, 3>& b, state& s,
+                     certipose::piece_sink<interval_box<certipose::boost_interval, 3>, state>& sink) {
+        using I = certipose::boost_interval;
+        shell_contractor<I>{}.contract(b);
+        if (is_empty(b)) return verdict::violated;
+        auto failing = b;
+        shell_complement<I>{}.contract(failing);
+        if (is_empty(failing)) return verdict::satisfied;
+        certipose::detail::carve(b, failing, 0.0, [&](interval_box<I, 3>&& piece) { sink.valid(std::move(piece)); });
+        ++s.carvings;
+        deepest = std::max(deepest, s.carvings);
+        return verdict::undecided;
+    }
+};
+}  // namespace
+
+TEST_CASE("an inner separator carves VALID pieces, carries its state, and loses no solution") {
+    using I = certipose::boost_interval;
+    static_assert(certipose::InnerSeparator<shell_separator, interval_box<I, 3>>);
+    certipose::paver<interval_box<I, 3>, certipose::identity, shell_separator, largest_first> p(
+        certipose::identity{}, shell_separator{}, largest_first(0.05));
+    const auto r = p.run(search_box<I>());
+    REQUIRE(r.stats.reason == certipose::termination::completed);
+    CHECK(p.inner_test().deepest > 1);  // states reached the halves
+    REQUIRE(p.boundary_states().size() == r.boundary.size());
+    for (const auto& b : r.valid)
+        for (const auto& c : certipose::corners(b)) {
+            const double f = shell_f(c);
+            CHECK(f >= f_lo - 1e-12);
+            CHECK(f <= f_hi + 1e-12);
+        }
+    for (const auto& p2 : shell_samples(2000, 11)) CHECK((covered(r.valid, p2) || covered(r.boundary, p2)));
+    // It certifies at least what the inner contractor does (the same carving, one ulp apart).
+    const auto inner = shell_paving_inner<I>(0.05);
+    CHECK(r.stats.valid_volume >= 0.99 * inner.stats.valid_volume);
+}
+
+TEST_CASE("run_from paves several boxes with their states as one run") {
+    using I = certipose::boost_interval;
+    using box = interval_box<I, 3>;
+    const std::vector<box> halves{box::from_bounds({{{-5, 1}, {-5, 5}, {-5, 5}}}), box::from_bounds({{{1, 5}, {-5, 5}, {-5, 5}}})};
+    certipose::paver<box, certipose::identity, shell_separator, largest_first> p(certipose::identity{}, shell_separator{},
+                                                                               largest_first(0.05));
+    const auto both = p.run_from(halves, {});
+    double separate_volume = 0;
+    for (const auto& h : halves) separate_volume += p.run(h).stats.valid_volume;
+    CHECK(both.stats.valid_volume == doctest::Approx(separate_volume).epsilon(1e-12));
+    const std::vector<shell_separator::state> one{shell_separator::state{}};
+    CHECK_THROWS_AS(p.run_from(halves, one), certipose::invalid_argument);
+}
+
+TEST_CASE("largest_volume_first decides the largest boxes first: a budget leaves only small ones") {
+    using I = certipose::boost_interval;
+    paver_options opt;
+    opt.max_boxes = 300;
+    const auto dfs = shell_paving<I, largest_first, certipose::depth_first>(largest_first(0.01), opt);
+    const auto big = shell_paving<I, largest_first, certipose::largest_volume_first>(largest_first(0.01), opt);
+    REQUIRE(dfs.stats.reason == certipose::termination::box_budget);
+    REQUIRE(big.stats.reason == certipose::termination::box_budget);
+    const auto largest = [](const auto& boxes) {
+        double v = 0;
+        for (const auto& b : boxes) v = std::max(v, certipose::volume(b));
+        return v;
+    };
+    // Depth first leaves a half of the search box pending; largest first never lets one wait.
+    CHECK(largest(big.pending) < largest(dfs.pending) / 8);
+}
+#endif

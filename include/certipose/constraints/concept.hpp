@@ -114,6 +114,17 @@ concept SearchableConstraintSet = PositionConstraintSet<C, I> && requires(C& c) 
     { c.initial_box() } -> std::convertible_to<position_box<I>>;
 };
 
+/// A set that can also contract the *complement* of itself (IBEX's CtcNotIn; the inner
+/// contraction of the position stage): `contract_complement(box)` narrows `box` to a box that
+/// still holds every position of it violating at least one of the set's constraints, so every
+/// position it removes satisfies all of them. Only the closure of each strict constraint need be
+/// kept: the removed part may touch positions where a strict inequality is an equality, and the
+/// caller leaves a gap there (solver/position_stage.hpp carves one ulp apart).
+template <class C, class I>
+concept ComplementContractingSet = PositionConstraintSet<C, I> && requires(C& c, position_box<I>& box) {
+    { c.contract_complement(box) } -> std::same_as<void>;
+};
+
 /// A set that names the first of its constraints it cannot certify on a box: `undecided(box)`
 /// is that constraint, or nothing when the set certifies the whole box (test: satisfied).
 template <class C, class I>

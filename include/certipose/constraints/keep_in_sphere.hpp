@@ -20,6 +20,7 @@
 
 #include "certipose/constraints/concept.hpp"
 #include "certipose/contractor/hc4.hpp"
+#include "certipose/contractor/not_in.hpp"
 #include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/constraint.hpp"
@@ -39,9 +40,13 @@ public:
     /// Throws invalid_argument("centre") for a non-finite centre, invalid_argument("radius")
     /// unless radius > 0 (NaN rejected).
     keep_in_sphere(const position_problem&, const parameters& p)
-        : p_(validated(p)), r2_(squared_radius(p.radius)), hc4_(make_hc4(p.centre, r2_.hi)) {}
+        : p_(validated(p)), r2_(squared_radius(p.radius)), hc4_(make_hc4(p.centre, r2_.hi)),
+          outside_(make_outside(p.centre, r2_.lo)) {}
 
     void contract(position_box<I>& box) { hc4_.contract(box); }
+
+    /// Keeps the positions of `box` that may lie outside the ball (ComplementContractingSet).
+    void contract_complement(position_box<I>& box) const { outside_.contract(box); }
 
     /// satisfied: the whole box is in the ball; violated: none of it is.
     verdict test(const position_box<I>& b) const {
@@ -84,9 +89,18 @@ private:
         return hc4(sqr(x - c.x()) + sqr(y - c.y()) + sqr(z - c.z()) <= r2_hi);
     }
 
+    // Inside when d² ≤ radius² rounded down: the complement kept is d² ≥ that bound.
+    static auto make_outside(const Eigen::Vector3d& c, double r2_lo) {
+        constexpr var<0> x;
+        constexpr var<1> y;
+        constexpr var<2> z;
+        return not_in(sqr(x - c.x()) + sqr(y - c.y()) + sqr(z - c.z()) <= r2_lo);
+    }
+
     parameters p_;
     bounds r2_;
     decltype(make_hc4(Eigen::Vector3d::Zero(), 0.0)) hc4_;
+    decltype(make_outside(Eigen::Vector3d::Zero(), 0.0)) outside_;
 };
 
 }  // namespace certipose

@@ -28,6 +28,7 @@
 #include "certipose/constraints/box_triangle_distance.hpp"
 #include "certipose/constraints/concept.hpp"
 #include "certipose/contractor/hc4.hpp"
+#include "certipose/contractor/not_in.hpp"
 #include "certipose/expr/constraint.hpp"
 #include "certipose/expr/vector.hpp"
 #include "certipose/interval/operations.hpp"
@@ -44,6 +45,7 @@ struct facet_enclosures {
     std::array<I, 3> c;     ///< centroid
     I sin_view_norm;        ///< sin θ_v · ‖N‖
     double dmin2_lo, dmin2_hi, dmax2_lo, dmax2_hi;
+    double near2_hi;        ///< (d_min + r_f)² rounded up, r_f ≥ the facet's radius about c
 
     facet_enclosures(const facet& f, distance_range r, double min_view_angle) {
         const rounding_guard<I> rounding;
@@ -58,6 +60,10 @@ struct facet_enclosures {
         const I dmin2 = sqr(I(r.min)), dmax2 = sqr(I(r.max));
         dmin2_lo = lower(dmin2), dmin2_hi = upper(dmin2);
         dmax2_lo = lower(dmax2), dmax2_hi = upper(dmax2);
+        double radius = 0.0;
+        for (int i = 0; i < 3; ++i)
+            radius = std::max(radius, upper(sqrt(sqr(v[i][0] - c[0]) + sqr(v[i][1] - c[1]) + sqr(v[i][2] - c[2]))));
+        near2_hi = upper(sqr(I(r.min) + I(radius)));
     }
 };
 
@@ -80,6 +86,33 @@ auto make_position_hc4(const facet& f, const facet_enclosures<I>& e) {
                dot(PC, N) - param<6>(e.sin_view_norm) * sqrt(sqr_norm(PC)) >= 0.0);  // view angle
 }
 
+/// Sufficient conditions of constraints 1–4, whose negation `contract_complement` contracts
+/// (not_in keeps the hull of the points violating one of them):
+///   ‖p − v_i‖² ≤ d_max² rounded down                                   ⇒ focus, far side
+///   ‖p − c‖ ≥ d_min + r_f, r_f ≥ max_i ‖v_i − c‖ (squared, rounded up)
+///       ⇒ ‖p − q‖ ≥ ‖p − c‖ − ‖q − c‖ ≥ d_min for every q of the facet (focus, near side; C_f
+///         too when d_min > 0, and when d_min = 0 the points of the facet fail the backface
+///         closure below)
+///   (p − v1)·N ≥ 0 and the view cone, the closures of constraints 3 and 4.
+/// The near side is the only approximation: it gives away a shell of width ≤ r_f, the facet's
+/// radius, which is small beside d_min for the facets of a part.
+template <Interval I>
+auto make_position_complement(const facet& f, const facet_enclosures<I>& e) {
+    constexpr var<0> x;
+    constexpr var<1> y;
+    constexpr var<2> z;
+    const auto dist2 = [&](const Eigen::Vector3d& v) { return sqr(x - v.x()) + sqr(y - v.y()) + sqr(z - v.z()); };
+    const auto N = vec(param<0>(e.N[0]), param<1>(e.N[1]), param<2>(e.N[2]));
+    const auto C = vec(param<3>(e.c[0]), param<4>(e.c[1]), param<5>(e.c[2]));
+    const auto P = vec(x, y, z);
+    const auto V1 = vec(f.v[0].x(), f.v[0].y(), f.v[0].z());
+    const auto PC = P - C;
+    return not_in(dist2(f.v[0]) <= e.dmax2_lo, dist2(f.v[1]) <= e.dmax2_lo, dist2(f.v[2]) <= e.dmax2_lo,
+                  sqr_norm(PC) >= e.near2_hi,                                   // ‖p − c‖ ≥ d_min + r_f
+                  dot(P - V1, N) >= 0.0,                                        // backface (closure)
+                  dot(PC, N) - param<6>(e.sin_view_norm) * sqrt(sqr_norm(PC)) >= 0.0);  // view angle
+}
+
 }  // namespace detail
 
 /// The paper's position constraint set C_p for one facet (§6.2). Models PositionConstraintSet.
@@ -90,10 +123,15 @@ public:
         : f_(validated(problem).facet),
           range_(problem.range),
           enc_(problem.facet, problem.range, problem.task.min_view_angle),
-          hc4_(detail::make_position_hc4<I>(problem.facet, enc_)) {}
+          hc4_(detail::make_position_hc4<I>(problem.facet, enc_)),
+          complement_(detail::make_position_complement<I>(problem.facet, enc_)) {}
 
     /// HC4 over the polynomial constraints; empties the box when no position can satisfy them.
     void contract(position_box<I>& box) { hc4_.contract(box); }
+
+    /// Narrows `box` to the hull of its positions that may violate one of constraints 1–4
+    /// (ComplementContractingSet): every position removed satisfies all four.
+    void contract_complement(position_box<I>& box) const { complement_.contract(box); }
 
     /// satisfied: every position of the box meets constraints 1–4 for every point of the facet;
     /// violated: none does; otherwise undecided.
@@ -176,6 +214,8 @@ private:
     detail::facet_enclosures<I> enc_;
     decltype(detail::make_position_hc4<I>(std::declval<const facet&>(),
                                           std::declval<const detail::facet_enclosures<I>&>())) hc4_;
+    decltype(detail::make_position_complement<I>(std::declval<const facet&>(),
+                                                 std::declval<const detail::facet_enclosures<I>&>())) complement_;
 };
 
 /// Several constraint sets at once (all must hold): contracts with each in turn; satisfied when
@@ -205,6 +245,23 @@ public:
     void contract(Box& box) {
         std::apply([&](auto&... s) { ((is_empty(box) ? void() : s.contract(box)), ...); }, sets_);
     }
+    /// The hull of the members' complement contractions (a position violating the conjunction
+    /// violates some member); only when every member can contract its complement.
+    template <class Box>
+        requires(ComplementContractingSet<Sets, typename Box::interval_type> && ...)
+    void contract_complement(Box& box) {
+        if (is_empty(box)) return;
+        Box result = Box::empty();
+        std::apply([&](auto&... s) {
+            ((void)[&] {
+                Box b = box;
+                s.contract_complement(b);
+                result = hull(result, b);
+            }(), ...);
+        }, sets_);
+        box = result;
+    }
+
     template <class Box>
     verdict test(const Box& box) {
         verdict r = verdict::satisfied;

@@ -177,7 +177,10 @@ struct param : node_tag {
     param() = default;
     explicit param(double v) { set(v, v); }
     param(double l, double h) { set(l, h); }
-    template <Interval I>
+    // Not for param itself: checking Interval<param> asks whether param is copyable, which asks
+    // this constructor again (clang 14 recurses without end; the first conjunct stops it).
+    template <class I>
+        requires(!std::is_same_v<I, param>) && Interval<I>
     explicit param(const I& v) {
         set(v);
     }

@@ -537,6 +537,12 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     ordered_json settings;
     settings["position_eps"] = finite(d.settings.position_eps, "settings.position_eps");
     settings["orientation_eps"] = finite(d.settings.orientation_eps, "settings.orientation_eps");
+    settings["inner_contraction"] = d.settings.inner_contraction;
+    settings["occlusion_cuts"] = d.settings.occlusion_cuts;
+    settings["leaf_corner_boxes"] = d.settings.leaf_corner_boxes;
+    if (d.settings.refine_min_width)
+        settings["refine_min_width"] = finite(*d.settings.refine_min_width, "settings.refine_min_width");
+    settings["grow"] = d.settings.grow;
 
     ordered_json boxes = ordered_json::array();
     for (std::size_t i = 0; i < d.boxes.size(); ++i) {
@@ -564,7 +570,18 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     stats["contractions"] = s.contractions;
     stats["bisections"] = s.bisections;
     stats["occlusion_tests"] = s.occlusion_tests;
+    stats["inner_pieces"] = s.inner_pieces;
+    stats["occlusion_pieces"] = s.occlusion_pieces;
+    stats["corner_boxes"] = s.corner_boxes;
+    stats["position_merges"] = s.position_merges;
+    stats["valid_volume"] = finite(s.valid_volume, "stats.valid_volume");
+    stats["boundary_volume"] = finite(s.boundary_volume, "stats.boundary_volume");
+    stats["refinement_stopped"] = s.refinement_stopped;
+    stats["merges"] = s.merges;
+    stats["grown"] = s.grown;
+    stats["seconds_growth"] = finite(s.seconds_growth, "stats.seconds_growth");
     stats["orientation_certifications"] = s.orientation_certifications;
+    stats["orientation_groups"] = s.orientation_groups;
     stats["seconds_position"] = finite(s.seconds_position, "stats.seconds_position");
     stats["seconds_orientation"] = finite(s.seconds_orientation, "stats.seconds_orientation");
     stats["termination"] = to_string(s.reason);
@@ -660,6 +677,17 @@ inline result_document result_from_json(const nlohmann::json& j) {
     const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
     d.settings.position_eps = required_number(settings, "settings", "position_eps");
     d.settings.orientation_eps = required_number(settings, "settings", "orientation_eps");
+    const auto flag = [&](const json& obj, const std::string& path, std::string_view key, bool& out) {
+        if (const json* v = find(obj, key)) {
+            if (!v->is_boolean()) fail(child(path, key), "expected true or false, got " + describe(*v));
+            out = v->get<bool>();
+        }
+    };
+    flag(settings, "settings", "inner_contraction", d.settings.inner_contraction);
+    flag(settings, "settings", "occlusion_cuts", d.settings.occlusion_cuts);
+    flag(settings, "settings", "leaf_corner_boxes", d.settings.leaf_corner_boxes);
+    d.settings.refine_min_width = optional_number(settings, "settings", "refine_min_width");
+    flag(settings, "settings", "grow", d.settings.grow);
 
     const json& boxes = require(j, "", "boxes", "an array");
     if (!boxes.is_array()) fail("boxes", "expected an array, got " + describe(boxes));
@@ -702,7 +730,18 @@ inline result_document result_from_json(const nlohmann::json& j) {
     count("contractions", s.contractions);
     count("bisections", s.bisections);
     count("occlusion_tests", s.occlusion_tests);
+    count("inner_pieces", s.inner_pieces);
+    count("occlusion_pieces", s.occlusion_pieces);
+    count("corner_boxes", s.corner_boxes);
+    count("position_merges", s.position_merges);
     count("orientation_certifications", s.orientation_certifications);
+    count("orientation_groups", s.orientation_groups);
+    s.valid_volume = optional_number(stats, "stats", "valid_volume").value_or(0.0);
+    s.boundary_volume = optional_number(stats, "stats", "boundary_volume").value_or(0.0);
+    flag(stats, "stats", "refinement_stopped", s.refinement_stopped);
+    count("merges", s.merges);
+    count("grown", s.grown);
+    s.seconds_growth = optional_number(stats, "stats", "seconds_growth").value_or(0.0);
     s.seconds_position = optional_number(stats, "stats", "seconds_position").value_or(0.0);
     s.seconds_orientation = optional_number(stats, "stats", "seconds_orientation").value_or(0.0);
     if (const json* t = find(stats, "termination")) {

@@ -60,6 +60,7 @@ triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& o
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -129,6 +130,158 @@ private:
     std::ostringstream text_;
     std::streambuf* old_;
 };
+
+/// Screens an OFF file before CGAL reads it. CGAL 5.5's OFF scanner reads past its buffers on
+/// hostile input (a COFF vertex without its colour entries, a face with a colour index, an index
+/// beyond 2^64 converted from a double: found by tests/fuzz), so only files whose every line has
+/// the expected shape reach it: an OFF or COFF header (counts on it or on the next line), vertex
+/// lines of 3 finite numbers (COFF: 3 more or 4 more for the colour), face lines of a count n ≥ 1,
+/// n vertex indices in range and no colour or 3 or 4 colour values in [0, 255]. Counts beyond
+/// what the file's size can hold are refused before anything is allocated. Returns why the file
+/// is refused ("PATH line N: ..."), or nothing.
+inline std::string screen_off(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    const std::uintmax_t bytes = ec ? 0 : size;
+    std::string line;
+    std::size_t line_no = 0;
+    std::vector<std::string> words;
+    const auto next_line = [&] {
+        while (std::getline(in, line)) {
+            ++line_no;
+            if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+            words.clear();
+            std::istringstream split(line);
+            for (std::string w; split >> w;) words.push_back(w);
+            if (!words.empty()) return true;
+        }
+        return false;
+    };
+    const std::string at = path.string() + " line ";
+    const auto where = [&] { return at + std::to_string(line_no) + ": "; };
+    const auto number = [](const std::string& w, double& v) {
+        const auto [end, e] = std::from_chars(w.data(), w.data() + w.size(), v);
+        return e == std::errc{} && end == w.data() + w.size() && std::isfinite(v);
+    };
+    const auto count = [](const std::string& w, std::uint64_t& v) {
+        if (w.empty() || w.size() > 19 || w.find_first_not_of("0123456789") != std::string::npos) return false;
+        const auto [end, e] = std::from_chars(w.data(), w.data() + w.size(), v);
+        return e == std::errc{} && end == w.data() + w.size();
+    };
+    if (!next_line()) return path.string() + ": empty (no OFF header)";
+    const std::string head = words[0];
+    if (head != "OFF" && head != "COFF")
+        return where() + "header '" + head + "' is not supported (plain OFF or COFF, ASCII)";
+    const bool colours = head == "COFF";
+    std::size_t first = 1;
+    if (words.size() == 1) {
+        if (!next_line()) return path.string() + ": ends after the header";
+        first = 0;
+    }
+    std::uint64_t nv = 0, nf = 0, ne = 0;
+    if (words.size() < first + 2 || words.size() > first + 3 || !count(words[first], nv) || !count(words[first + 1], nf) ||
+        (words.size() == first + 3 && !count(words[first + 2], ne)))
+        return where() + "expected the vertex, face and edge counts";
+    // A vertex takes at least 6 bytes ("0 0 0\n"), a face 8: more than the file holds is a lie.
+    if (nv > bytes / 6 + 1 || nf > bytes / 8 + 1)
+        return where() + "counts " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+               " faces do not fit a file of " + std::to_string(bytes) + " bytes";
+    for (std::uint64_t v = 0; v < nv; ++v) {
+        if (!next_line()) return path.string() + ": ends after " + std::to_string(v) + " of " + std::to_string(nv) + " vertices";
+        const std::size_t want = colours ? 6 : 3;
+        if (words.size() != want && !(colours && words.size() == 7))
+            return where() + "vertex " + std::to_string(v) + " has " + std::to_string(words.size()) + " values, expected " +
+                   (colours ? "6 or 7 (x y z and a colour)" : "3");
+        for (std::size_t k = 0; k < words.size(); ++k) {
+            double x = 0;
+            if (!number(words[k], x))
+                return where() + "vertex " + std::to_string(v) + " has " + (k < 3 ? "coordinate" : "colour value") + " '" +
+                       words[k] + "', not a finite number";
+        }
+    }
+    for (std::uint64_t f = 0; f < nf; ++f) {
+        if (!next_line()) return path.string() + ": ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces";
+        std::uint64_t n = 0;
+        if (!count(words[0], n) || n < 1 || n > words.size() - 1)
+            return where() + "face " + std::to_string(f) + " has no valid vertex count ('" + words[0] + "')";
+        for (std::size_t k = 1; k <= n; ++k) {
+            std::uint64_t idx = 0;
+            if (!count(words[k], idx) || idx >= nv)
+                return where() + "face " + std::to_string(f) + " refers to vertex " + words[k] + ", out of range (the file has " +
+                       std::to_string(nv) + " vertices)";
+        }
+        const std::size_t extra = words.size() - 1 - n;
+        if (extra != 0 && extra != 3 && extra != 4)
+            return where() + "face " + std::to_string(f) + " has " + std::to_string(extra) +
+                   " values after its indices (a colour has 3 or 4)";
+        for (std::size_t k = n + 1; k < words.size(); ++k) {
+            double c = 0;
+            if (!number(words[k], c) || c < 0 || c > 255)
+                return where() + "face " + std::to_string(f) + " has colour value '" + words[k] + "', not in [0, 255]";
+        }
+    }
+    return {};
+}
+
+/// Screens a PLY header before CGAL reads the file (CGAL 5.5's PLY reader runs off its buffers
+/// on a malformed element line: tests/fuzz): "ply", a format line, then only comment, obj_info,
+/// element NAME COUNT and property lines with PLY's types, up to end_header, with element counts
+/// the file's size can hold. Returns why the file is refused, or nothing.
+inline std::string screen_ply(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    const std::uintmax_t bytes = ec ? 0 : size;
+    const std::string at = path.string() + " line ";
+    std::string line;
+    std::size_t line_no = 0;
+    bool element_seen = false;
+    const auto is_type = [](const std::string& t) {
+        static const char* types[] = {"char",  "uchar", "short",  "ushort",  "int",     "uint",   "float",  "double",
+                                      "int8",  "uint8", "int16",  "uint16",  "int32",   "uint32", "float32", "float64"};
+        return std::find(std::begin(types), std::end(types), t) != std::end(types);
+    };
+    while (std::getline(in, line) && line_no < 10000) {
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream split(line);
+        std::vector<std::string> w;
+        for (std::string x; split >> x;) w.push_back(x);
+        const auto bad = [&](const std::string& why) { return at + std::to_string(line_no) + ": " + why; };
+        if (line_no == 1) {
+            if (line != "ply") return bad("expected 'ply'");
+            continue;
+        }
+        if (line_no == 2) {
+            if (w.size() != 3 || w[0] != "format" ||
+                (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian") || w[2] != "1.0")
+                return bad("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+            continue;
+        }
+        if (w.empty()) return bad("empty header line");
+        if (w[0] == "comment" || w[0] == "obj_info") continue;
+        if (w[0] == "end_header") return w.size() == 1 ? std::string{} : bad("text after end_header");
+        if (w[0] == "element") {
+            std::uint64_t n = 0;
+            const bool digits = w.size() == 3 && !w[2].empty() && w[2].size() <= 19 &&
+                                w[2].find_first_not_of("0123456789") == std::string::npos;
+            if (!digits || std::from_chars(w[2].data(), w[2].data() + w[2].size(), n).ec != std::errc{})
+                return bad("expected 'element NAME COUNT'");
+            if (n > bytes) return bad("element count " + w[2] + " does not fit a file of " + std::to_string(bytes) + " bytes");
+            element_seen = true;
+            continue;
+        }
+        if (w[0] == "property") {
+            if (!element_seen) return bad("a property before any element");
+            if (w.size() == 3 && is_type(w[1])) continue;
+            if (w.size() == 5 && w[1] == "list" && is_type(w[2]) && is_type(w[3])) continue;
+            return bad("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
+        }
+        return bad("unknown header line '" + line.substr(0, 40) + "'");
+    }
+    return path.string() + ": no end_header";
+}
 
 /// Why an ASCII OFF or OBJ file that CGAL refused is bad, naming the line and the value: a
 /// coordinate that is not a finite number, a face index out of range, a short line. Empty when
@@ -250,6 +403,12 @@ CERTIPOSE_DECL triangle_mesh read_mesh(const std::filesystem::path& path, const 
         throw io_error(name, "read_mesh: no such file: " + name);
     if (!std::ifstream(path, std::ios::binary))
         throw io_error(name, "read_mesh: cannot open " + name);
+
+    if (const std::string why = ext == ".off"   ? detail::io::screen_off(path)
+                                : ext == ".ply" ? detail::io::screen_ply(path)
+                                                : std::string{};
+        !why.empty())
+        throw io_error(name, "read_mesh: cannot parse " + why);
 
     triangle_soup soup;
     std::vector<std::vector<std::size_t>> polygons;

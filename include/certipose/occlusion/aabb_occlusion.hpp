@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace certipose {
 
@@ -63,6 +64,26 @@ public:
     /// The same on a box given by double bounds.
     visibility classify(const Eigen::AlignedBox3d& box, std::size_t facet,
                         occlusion_effort effort = occlusion_effort::full) const;
+
+    /// ShadowingOcclusionPolicy: visits the scene triangles that may block a sight line from
+    /// `box` to facet `facet` (occlusion/concept.hpp), as the AABB tree walk finds them. True
+    /// when it showed them all; false when `visit` stopped it, when some corner of the box is
+    /// not strictly in front of the facet, or after `max_blockers` triangles. Throws as `classify`.
+    template <Interval I>
+    bool blockers(const position_box<I>& box, std::size_t facet, blocker_visitor visit) const {
+        return blockers(detail::occ::box_bounds(box, "aabb_occlusion"), facet, visit);
+    }
+    bool blockers(const Eigen::AlignedBox3d& box, std::size_t facet, blocker_visitor visit) const;
+
+    /// ShadowingOcclusionPolicy: the shadow of scene triangle `triangle` (part faces first,
+    /// then each occluder's) for facet `facet`: the planes through three of their six vertices
+    /// with the facet on one closed side and the triangle on the other (exact orientations).
+    /// Throws out_of_range("facet") / out_of_range("triangle").
+    occlusion_shadow shadow(std::size_t facet, std::size_t triangle) const;
+
+    /// `blockers` gives up after this many possibly blocking triangles (a box that many
+    /// triangles may block is bisected instead).
+    static constexpr std::size_t max_blockers = 64;
 
     /// `classify`, also reporting how the answer was reached (for tests and benchmarks).
     visibility explain(const Eigen::AlignedBox3d& box, std::size_t facet, trace& info,

@@ -571,6 +571,76 @@ struct hull_traversal {
     }
 };
 
+/// Adds to `s` the planes through three of the six vertices of facet f and triangle t — t's own
+/// plane, each edge of one with each vertex of the other — that have f's vertices on one closed
+/// side and t's on the other (exact orientations), as the closed half-space away from f
+/// (occlusion_shadow). A plane holding all six vertices separates nothing and is skipped.
+inline void add_separating_planes(const std::array<pt, 3>& f, const std::array<pt, 3>& t, occlusion_shadow& s) {
+    // The six vertices are f's (0–2) and t's (3–5); a plane is given by three of them, which lie
+    // on it: their orientations are 0 without asking (the exact fallback of orient3 is what
+    // costs on a point of the plane).
+    const auto vertex = [&](int i) -> const pt& { return i < 3 ? f[static_cast<std::size_t>(i)] : t[static_cast<std::size_t>(i - 3)]; };
+    const auto consider = [&](int ia, int ib, int ic) {
+        const pt &a = vertex(ia), &b = vertex(ib), &c = vertex(ic);
+        std::array<int, 3> fs{}, ts{};
+        for (int k = 0; k < 3; ++k) {
+            fs[k] = (k == ia || k == ib || k == ic) ? 0 : orient3(a, b, c, f[k]);
+            ts[k] = (k + 3 == ia || k + 3 == ib || k + 3 == ic) ? 0 : orient3(a, b, c, t[k]);
+        }
+        const bool flat = fs == std::array<int, 3>{} && ts == std::array<int, 3>{};
+        if (flat || s.count == occlusion_shadow::max_planes) return;
+        for (const int sigma : {1, -1}) {
+            bool ok = true;
+            for (int k = 0; k < 3 && ok; ++k) ok = sigma * fs[k] >= 0 && sigma * ts[k] <= 0;
+            if (!ok) continue;
+            auto& h = s.planes[s.count++];
+            for (int k = 0; k < 3; ++k) {
+                const pt& x = k == 0 ? a : k == 1 ? b : c;
+                h.points[static_cast<std::size_t>(k)] = Eigen::Vector3d(x[0], x[1], x[2]);
+            }
+            h.sign = sigma;
+            return;
+        }
+    };
+    consider(3, 4, 5);
+    for (int e = 0; e < 3; ++e)
+        for (int v = 0; v < 3; ++v) {
+            consider(e, (e + 1) % 3, 3 + v);
+            consider(3 + e, 3 + (e + 1) % 3, v);
+        }
+}
+
+/// CGAL traversal traits: every triangle that may block a sight line (the fast decision says yes
+/// or unsure) to the visitor, until it stops the walk or max_blockers is passed.
+struct blocker_walk {
+    const sight_hull& H;
+    const aabb_scene& scene;
+    std::size_t facet;
+    std::array<std::uint32_t, 3> fid;
+    blocker_visitor visit;
+    bool stopped = false;
+    std::size_t seen = 0;
+    aabb_trace trace{};
+
+    bool go_further() const { return !stopped; }
+
+    template <class Primitive>
+    void intersection(const sight_hull&, const Primitive& prim) {
+        const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
+        if (idx == facet || stopped) return;
+        if (decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace) == hit::no) return;
+        if (++seen > aabb_occlusion::max_blockers || !visit(idx)) stopped = true;
+    }
+
+    template <class Node>
+    bool do_intersect(const sight_hull&, const Node& node) const {
+        const auto& b = node.bbox();
+        const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
+        if (box_outside_closed(H.facet_plane(), lo, hi)) return false;
+        return !node_outside_hull(H, lo, hi, 1);
+    }
+};
+
 /// The part, then each occluder.
 inline std::vector<const triangle_mesh*> scene_meshes(const triangle_mesh& part,
                                                      std::span<const triangle_mesh> occluders) {
@@ -696,6 +766,40 @@ CERTIPOSE_DECL visibility aabb_occlusion::explain(const Eigen::AlignedBox3d& box
         if (all_cross && planar_wall_blocks(H, *scene_, facet, T)) return visibility::occluded;
     }
     return visibility::partial;
+}
+
+CERTIPOSE_DECL bool aabb_occlusion::blockers(const Eigen::AlignedBox3d& box, std::size_t facet,
+                                              blocker_visitor visit) const {
+    using namespace detail::occ;
+    const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    const detail::round_to_nearest_scope nearest;
+    const scene_triangle& F = scene_->tris[facet];
+    const pt lo{b.min().x(), b.min().y(), b.min().z()};
+    const pt hi{b.max().x(), b.max().y(), b.max().z()};
+    // The same premise as classify's VISIBLE: every position strictly in front of the facet
+    // (then a sight line meeting no other triangle runs outside every solid).
+    const hplane fp = facet_plane(F.v);
+    for (int k = 0; k < 8; ++k) {
+        const pt c{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
+        if (side(fp, c) >= 0) return false;
+    }
+    thread_local sight_hull H;
+    build_sight_hull(lo, hi, F.v, H);
+    blocker_walk walk{H, *scene_, facet, F.id, visit};
+    scene_->tree.traversal(H, walk);
+    return !walk.stopped;
+}
+
+CERTIPOSE_DECL occlusion_shadow aabb_occlusion::shadow(std::size_t facet, std::size_t triangle) const {
+    using namespace detail::occ;
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    if (triangle >= scene_->tris.size()) throw out_of_range("triangle", triangle, scene_->tris.size());
+    const detail::round_to_nearest_scope nearest;
+    occlusion_shadow s;
+    s.triangle = triangle;
+    add_separating_planes(scene_->tris[facet].v, scene_->tris[triangle].v, s);
+    return s;
 }
 
 CERTIPOSE_DECL std::uint64_t aabb_occlusion::exact_fallbacks() const noexcept {

@@ -17,10 +17,15 @@
 #include <certipose/interval/concept.hpp>
 #include <certipose/pose/pose_box.hpp>
 
+#include <Eigen/Core>
+
+#include <array>
 #include <concepts>
 #include <cstddef>
 #include <span>
 #include <string_view>
+#include <type_traits>
+#include <vector>
 
 namespace certipose {
 
@@ -66,6 +71,59 @@ template <class P, class I>
 concept EffortAwareOcclusionPolicy =
     OcclusionPolicy<P, I> && requires(const P& policy, const position_box<I>& box, std::size_t facet) {
         { policy.classify(box, facet, occlusion_effort::full) } -> std::same_as<visibility>;
+    };
+
+/// A closed half-space of camera positions given exactly: the p with
+/// sign · ((b − a) × (c − a)) · (p − a) ≤ 0, for double points a, b, c (`points`) and sign ±1.
+struct occlusion_half_space {
+    std::array<Eigen::Vector3d, 3> points;
+    int sign = 1;
+};
+
+/// Where one scene triangle T may block a sight line to the facet: the intersection of
+/// `count` closed half-spaces. Each is the closed side, away from the facet, of a plane with
+/// the facet's vertices on one closed side and T's on the other; from a position strictly on
+/// the facet's side every open sight segment to the facet stays strictly on that side, so T
+/// blocks none of them. Outside the shadow of every triangle that might block, the facet is
+/// VISIBLE. `count == 0` means T has no such plane here: its shadow is everything.
+struct occlusion_shadow {
+    static constexpr std::size_t max_planes = 19;  // T's plane, 9 edge–vertex planes each way
+    std::array<occlusion_half_space, max_planes> planes{};
+    std::size_t count = 0;
+    std::size_t triangle = 0;  ///< T's index in the scene (part faces first)
+};
+
+/// Receives the scene triangles of `ShadowingOcclusionPolicy::blockers` one at a time (their
+/// indices); returning false stops the walk.
+class blocker_visitor {
+public:
+    template <class F>
+        requires std::is_invocable_r_v<bool, F&, std::size_t>
+    blocker_visitor(F& f) noexcept  // NOLINT(implicit): built from a lambda at the call
+        : ctx_(&f), fn_([](void* c, std::size_t t) { return static_cast<bool>((*static_cast<F*>(c))(t)); }) {}
+    bool operator()(std::size_t triangle) const { return fn_(ctx_, triangle); }
+
+private:
+    void* ctx_;
+    bool (*fn_)(void*, std::size_t);
+};
+
+/// An occlusion policy that can also say *where* a box loses sight of the facet (optional; the
+/// position stage uses it to carve the certainly visible part off an occlusion-PARTIAL box,
+/// solve_options::occlusion_cuts):
+///  * `blockers(box, facet, visit)` calls `visit` with every scene triangle that may block a
+///    sight line from the box, and returns true when it has shown them all; false — nothing
+///    certified — when `visit` stopped it or it cannot say (a box not strictly in front of the
+///    facet, too many candidates);
+///  * `shadow(facet, triangle)` is that triangle's shadow, which depends on the two triangles
+///    alone (so callers may keep it for every box).
+/// Positions of the box outside the shadows of all its blockers see the facet: every other
+/// constraint-6 condition the policy's VISIBLE needs holds on the whole box.
+template <class P, class I>
+concept ShadowingOcclusionPolicy =
+    OcclusionPolicy<P, I> && requires(const P& policy, const position_box<I>& box, std::size_t facet, blocker_visitor visit) {
+        { policy.blockers(box, facet, visit) } -> std::same_as<bool>;
+        { policy.shadow(facet, facet) } -> std::same_as<occlusion_shadow>;
     };
 
 /// Whether a policy decides constraint 6 at all: true unless it declares

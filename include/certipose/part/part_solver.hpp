@@ -158,7 +158,9 @@ public:
 
     /// Solves the selected facets and hands each to `sink`, in order (see the header comment).
     /// Throws invalid_argument for bad options and out_of_range for a facet index not in the part.
-    template <PartSink<interval_type> Sink>
+    // Constrained on Policies::interval, spelled the same here and at the definition: clang 14
+    // does not match `PartSink<interval_type>` with its out-of-line spelling.
+    template <PartSink<typename Policies::interval> Sink>
     part_result solve(const part_options& options, Sink& sink) const;
 
 private:
@@ -201,7 +203,7 @@ std::optional<std::string> part_solver<Policies>::uninspectable(std::size_t inde
 }
 
 template <class Policies>
-template <PartSink<typename part_solver<Policies>::interval_type> Sink>
+template <PartSink<typename Policies::interval> Sink>
 part_result part_solver<Policies>::solve(const part_options& options, Sink& sink) const {
     using I = interval_type;
     using clock = std::chrono::steady_clock;

@@ -11,9 +11,13 @@
 // may instead be an *inner contractor* (IBEX's CtcNotIn used as the inner half of a
 // separator): a contractor of the complement of the constraint set; what it removes from a box
 // is certified VALID and emitted as up to 2N boxes, and only the rest is bisected (on the
-// spherical shell at ε = 0.05: VALID volume 0.365 instead of 0.299, of 0.41). The buffer policy
-// (`depth_first`, `breadth_first`, or a user type with a nested `buffer<T>`) orders the
-// unclassified boxes.
+// spherical shell at ε = 0.05: VALID volume 0.365 instead of 0.299, of 0.41). The most general
+// inner test is an *inner separator* (`InnerSeparator`): it carries a state of its own along the
+// paving (the halves of a bisected box inherit it) and may carve any pieces off a box — VALID,
+// discarded, or pending with their own state — before it answers for the rest; the solver's
+// position stage is one (constraint set, complement contraction and occlusion in one step).
+// The buffer policy (`depth_first`, `breadth_first`, `largest_volume_first`, or a user type with
+// a nested `buffer<T>`) orders the unclassified boxes.
 // Runs stop on a box budget, a deadline, a progress callback returning false or a
 // `std::stop_token`; boxes still unclassified are then returned as `pending`, so that VALID ∪
 // BOUNDARY ∪ pending always covers every solution in the initial box. Statistics, and
@@ -22,6 +26,7 @@
 // on two threads at once. `run` holds a `rounding_guard` for the whole run.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <concepts>
 #include <cstddef>
@@ -30,6 +35,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stop_token>
 #include <string>
 #include <utility>
@@ -84,6 +90,11 @@ inline const char* to_string(termination t) noexcept {
     return "?";
 }
 
+namespace detail {
+template <class Box>
+double paving_volume(const Box& b);
+}  // namespace detail
+
 // ---- buffer policies ------------------------------------------------------------------------
 
 /// Depth-first: the last box pushed is processed next (a stack; memory grows with the depth
@@ -123,6 +134,36 @@ struct breadth_first {
 
     private:
         std::deque<T> v_;
+    };
+};
+
+/// Largest volume first: the unclassified box with the largest volume is processed next (a
+/// heap). A run stopped by a budget has then decided the largest undecided boxes first, so the
+/// volume left undecided shrinks as fast as bisection allows: the buffer of an *anytime* run
+/// (`solve_options::refine`). Ties keep no particular order.
+struct largest_volume_first {
+    template <class T>
+    class buffer {
+    public:
+        void push(T&& v) {
+            double key = 0.0;
+            if constexpr (requires { v.box; }) key = detail::paving_volume(v.box);  // the paver's entries
+            else key = detail::paving_volume(v);                                    // plain boxes
+            v_.push_back({key, std::move(v)});
+            std::push_heap(v_.begin(), v_.end(), less);
+        }
+        T pop() {
+            std::pop_heap(v_.begin(), v_.end(), less);
+            T t = std::move(v_.back().second);
+            v_.pop_back();
+            return t;
+        }
+        bool empty() const noexcept { return v_.empty(); }
+        std::size_t size() const noexcept { return v_.size(); }
+
+    private:
+        static bool less(const std::pair<double, T>& a, const std::pair<double, T>& b) { return a.first < b.first; }
+        std::vector<std::pair<double, T>> v_;
     };
 };
 
@@ -168,6 +209,57 @@ struct inner_contractor {
 };
 template <class C>
 inner_contractor(C) -> inner_contractor<C>;
+
+/// Where an inner separator puts the pieces it carves off a box (see `InnerSeparator`): each
+/// piece must lie inside the box as it was given to `separate`; pieces may share faces with
+/// each other and with what is left of the box.
+template <class Box, class State>
+class piece_sink {
+public:
+    /// `f(Box&&, box_class, State&&)` receives each piece.
+    template <class F>
+    explicit piece_sink(F& f) noexcept
+        : ctx_(&f), fn_([](void* c, Box&& b, box_class k, State&& s) { (*static_cast<F*>(c))(std::move(b), k, std::move(s)); }) {}
+
+    /// Every point of `b` is a solution (certified).
+    void valid(Box b) { fn_(ctx_, std::move(b), box_class::valid, State{}); }
+    /// `b` holds no solution (certified); only counted.
+    void discarded(Box b) { fn_(ctx_, std::move(b), box_class::discarded, State{}); }
+    /// `b` is to be paved further, starting from state `s`.
+    void pending(Box b, State s) { fn_(ctx_, std::move(b), box_class::pending, std::move(s)); }
+
+private:
+    void* ctx_;
+    void (*fn_)(void*, Box&&, box_class, State&&);
+};
+
+/// The most general inner test: a type with a `state` (what it knows about a box, e.g. "the
+/// constraint set holds everywhere in it"; default-constructed for the initial box, inherited by
+/// both halves of a bisected box) and `verdict separate(Box& box, state& s, piece_sink<Box,
+/// state>& sink)`. It may narrow `box` (removing only points that are not solutions, or that
+/// it hands to `sink` as pieces) and update `s`; the verdict is for what is left of `box`:
+/// satisfied — VALID, violated — discarded, undecided — bisected, or BOUNDARY when the
+/// bisector declines. The paver calls it instead of the contractor and the inner test, so a
+/// separator contracts for itself (the contractor given to the paver is then usually
+/// `identity`) and the paver's `contractions` count stays at the number of boxes.
+template <class T, class Box>
+concept InnerSeparator = std::semiregular<typename T::state> &&
+                         requires(T& t, Box& box, typename T::state& s, piece_sink<Box, typename T::state>& sink) {
+                             { t.separate(box, s, sink) } -> std::same_as<verdict>;
+                         };
+
+namespace detail {
+struct no_paving_state {};
+template <class T>
+struct paving_state {
+    using type = no_paving_state;
+};
+template <class T>
+    requires requires { typename T::state; }
+struct paving_state<T> {
+    using type = typename T::state;
+};
+}  // namespace detail
 
 // ---- options, statistics, result ------------------------------------------------------------
 
@@ -288,14 +380,20 @@ void box_difference(const Box& outer, const Box& inner, F&& emit) {
 
 /// The inner test of a paver: a `BoxTest` (the paper) or an `InnerContractor`.
 template <class T, class Box>
-concept InnerTest = BoxTest<T, Box> || InnerContractor<T, Box>;
+concept InnerTest = BoxTest<T, Box> || InnerContractor<T, Box> || InnerSeparator<T, Box>;
 
 template <PavingBox Box, Contractor<Box> C, InnerTest<Box> T, Bisector<Box> B, class Buffer = depth_first>
 class paver {
+public:
+    /// What an InnerSeparator carries along the paving (an empty struct for other inner tests).
+    using state_type = typename detail::paving_state<T>::type;
+
+private:
     struct entry {
         Box box;
         std::size_t node;  // index in the tree, or no_parent when no tree is recorded
         bisection_context context;
+        [[no_unique_address]] state_type state{};
     };
     static_assert(PavingBuffer<Buffer, entry>, "certipose::paver: Buffer must provide buffer<T> with push/pop/empty/size");
 
@@ -317,7 +415,18 @@ public:
     /// Paves `initial` (Algorithm 1). Throws what the policies throw, and `invalid_argument` /
     /// `out_of_range` when the bisector returns a split outside the box.
     paving<Box> run(const Box& initial, std::stop_token stop = {}) {
+        return run_from(std::span<const Box>(&initial, 1), {}, std::move(stop));
+    }
+
+    /// Paves several boxes at once (e.g. the BOUNDARY boxes of an earlier run, refined further),
+    /// each starting from its state in `states` (the same length as `boxes`; empty: the default
+    /// state for all). They are one run: one budget, one buffer, one result; with
+    /// `record_tree` each is a root of the tree.
+    paving<Box> run_from(std::span<const Box> boxes, std::span<const state_type> states, std::stop_token stop = {}) {
         using clock = std::chrono::steady_clock;
+        if (!states.empty() && states.size() != boxes.size())
+            throw invalid_argument("states", "paver::run_from: " + std::to_string(states.size()) + " states for " +
+                                                 std::to_string(boxes.size()) + " boxes");
         check_options(options_);  // options() may have been edited since construction
         const rounding_guard<interval_type> guard{};
         const auto start = clock::now();
@@ -334,11 +443,18 @@ public:
 
         paving<Box> out;
         paver_stats& st = out.stats;
+        boundary_states_.clear();
         typename Buffer::template buffer<entry> list;
         const bool tree = options_.record_tree;
-        if (tree) out.tree.push_back(paving_node<Box>{paving_node<Box>::no_parent, initial, initial, box_class::pending});
-        list.push(entry{initial, tree ? 0 : paving_node<Box>::no_parent, bisection_context{}});
-        st.peak_pending = 1;
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            std::size_t node = paving_node<Box>::no_parent;
+            if (tree) {
+                node = out.tree.size();
+                out.tree.push_back(paving_node<Box>{paving_node<Box>::no_parent, boxes[i], boxes[i], box_class::pending});
+            }
+            list.push(entry{boxes[i], node, bisection_context{}, states.empty() ? state_type{} : states[i]});
+        }
+        st.peak_pending = list.size();
 
         termination reason = termination::completed;
         while (!list.empty()) {
@@ -361,11 +477,62 @@ public:
             std::size_t node = e.node;  // the tree node whose fate is decided below
 
             box_class cls = box_class::pending;  // undecided until the inner test or bisector speaks
+            double volume_after = volume_kept;   // what the inner test left of b
             if (empty) {
                 cls = box_class::discarded;
             } else {
                 ++st.inner_tests;
-                if constexpr (InnerContractor<T, Box>) {
+                if constexpr (InnerSeparator<T, Box>) {
+                    // Pieces carved off b become children of its tree node, like the pieces of an
+                    // inner contractor; pending ones join the list with the state they were given.
+                    const Box before = b;
+                    bool carved = false;
+                    double carved_volume = 0.0;
+                    auto on_piece = [&](Box&& piece, box_class k, state_type&& ps) {
+                        if (tree && !carved) {
+                            out.tree[node].contracted = before;
+                            out.tree[node].classification = box_class::bisected;
+                        }
+                        carved = true;
+                        carved_volume += detail::paving_volume(piece);
+                        std::size_t pn = paving_node<Box>::no_parent;
+                        if (tree) {
+                            pn = out.tree.size();
+                            out.tree.push_back(paving_node<Box>{node, piece, piece, k});
+                        }
+                        switch (k) {
+                            case box_class::valid: add_valid(out, std::move(piece)); break;
+                            case box_class::discarded:
+                                ++st.discarded;
+                                st.discarded_volume += detail::paving_volume(piece);
+                                break;
+                            default:
+                                list.push(entry{std::move(piece), pn, e.context, std::move(ps)});
+                                if (list.size() > st.peak_pending) st.peak_pending = list.size();
+                                break;
+                        }
+                    };
+                    piece_sink<Box, state_type> sink(on_piece);
+                    const verdict v = test_.separate(b, e.state, sink);
+                    for (std::size_t i = 0; i < b.size(); ++i) b[i] = intersect(b[i], before[i]);
+                    if (carved && tree) {
+                        const std::size_t rest_node = out.tree.size();
+                        out.tree.push_back(paving_node<Box>{node, b, b, box_class::pending});
+                        node = rest_node;
+                    }
+                    const bool rest_empty = detail::paving_empty(b);
+                    volume_after = rest_empty ? 0.0 : detail::paving_volume(b);
+                    if (const double removed = volume_kept - carved_volume - volume_after; removed > 0)
+                        st.discarded_volume += removed;
+                    if (rest_empty) {
+                        cls = box_class::discarded;
+                        volume_after = 0.0;
+                    } else if (v == verdict::satisfied) {
+                        cls = box_class::valid;
+                    } else if (v == verdict::violated) {
+                        cls = box_class::discarded;
+                    }
+                } else if constexpr (InnerContractor<T, Box>) {
                     Box rest = b;
                     test_.contract_inner(rest);
                     // box_difference needs rest ⊆ b, even from a user contractor that widens.
@@ -424,8 +591,8 @@ public:
                         out.tree.push_back(paving_node<Box>{node, right, right, box_class::pending});
                     }
                     // Second half first, so a depth-first buffer explores the first half first.
-                    list.push(entry{std::move(right), rn, child});
-                    list.push(entry{std::move(left), ln, child});
+                    list.push(entry{std::move(right), rn, child, e.state});
+                    list.push(entry{std::move(left), ln, child, std::move(e.state)});
                     if (list.size() > st.peak_pending) st.peak_pending = list.size();
                 }
             }
@@ -441,10 +608,11 @@ public:
                     ++st.boundary;
                     st.boundary_volume += detail::paving_volume(b);
                     out.boundary.push_back(std::move(b));
+                    if constexpr (InnerSeparator<T, Box>) boundary_states_.push_back(std::move(e.state));
                     break;
                 case box_class::discarded:
                     ++st.discarded;
-                    if (!empty) st.discarded_volume += volume_kept;  // the test proved it infeasible
+                    if (!empty) st.discarded_volume += volume_after;  // the test proved it infeasible
                     break;
                 default: break;
             }
@@ -482,6 +650,9 @@ public:
     const T& inner_test() const noexcept { return test_; }
     B& bisector() noexcept { return bisector_; }
     const B& bisector() const noexcept { return bisector_; }
+    /// With an InnerSeparator: the state of each BOUNDARY box of the last run, in the order of
+    /// `paving::boundary` (empty for other inner tests).
+    const std::vector<state_type>& boundary_states() const noexcept { return boundary_states_; }
 
 private:
     static void check_options(const paver_options& o) {
@@ -511,6 +682,7 @@ private:
     T test_;
     B bisector_;
     paver_options options_;
+    std::vector<state_type> boundary_states_;
 };
 
 /// One-call form: `pave(box, contractor, inner_test, bisector, options)`; the buffer policy is

@@ -33,8 +33,11 @@
 // also from several threads at once: `solve` is const and every run owns its state.
 #pragma once
 
+#include <array>
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <cstddef>
 #include <numbers>
 #include <optional>
@@ -49,6 +52,8 @@
 #include "certipose/occlusion/concept.hpp"
 #include "certipose/orientation/concept.hpp"
 #include "certipose/solver/contraction.hpp"
+#include "certipose/solver/detail/box_certifier.hpp"
+#include "certipose/solver/detail/growth.hpp"
 #include "certipose/solver/policies.hpp"
 #include "certipose/solver/position_stage.hpp"
 #include "certipose/solver/result.hpp"
@@ -61,6 +66,15 @@ template <class T>
 concept complete_type = requires { sizeof(T); };
 template <class O, class I>
 concept complete_occlusion_policy = complete_type<O> && OcclusionPolicy<O, I>;
+}  // namespace detail
+
+namespace detail {
+/// The finest growth steps of the six components.
+inline std::array<double, 6> finest_steps(const growth_options& o, double position_eps, double orientation_eps) {
+    const double p = o.position_step > 0 ? o.position_step : position_eps / 64;
+    const double e = o.orientation_step > 0 ? o.orientation_step : orientation_eps / 64;
+    return {p, p, p, e, e, e};
+}
 }  // namespace detail
 
 template <class Policies = default_policies>
@@ -161,7 +175,29 @@ public:
     /// never VALID).
     result_type solve(std::size_t facet_index, const solve_options& options = {}) const;
 
+    /// Whether every pose of `box` is valid for facet `facet_index`: each constraint of
+    /// DESIGN.md §3 proven over the whole box with the proofs `solve` uses (the constraint set,
+    /// the occlusion policy, certify_fov). false means "not proven", not "invalid".
+    bool certify(std::size_t facet_index, const pose_box<I>& box) const;
+
+    /// `box` — one `certify` accepts, e.g. a VALID box of `solve` — widened face by face while
+    /// it stays certified (solver/detail/growth.hpp): the same box or a larger one, certified.
+    /// Throws invalid_argument("box") when `certify` does not accept `box`.
+    pose_box<I> grow(std::size_t facet_index, const pose_box<I>& box, const growth_options& options = {}) const;
+
+    /// The largest certified box found around the pose (x, y, z, φ, γ, β): all half-widths
+    /// grown together in the proportions of (ε_p, ε_p, ε_p, ε_o, ε_o, ε_o) of `eps` (defaults:
+    /// 0.1 m, 0.38 rad), then each on its own — the installation tolerance of that pose, per
+    /// axis (γ stays within [0, π], so the box is not centred there). Nothing when the pose
+    /// itself cannot be certified valid.
+    std::optional<pose_box<I>> largest_box_around(std::size_t facet_index, const std::array<double, 6>& pose,
+                                                  const growth_options& options = {},
+                                                  std::array<double, 2> eps = {0.1, 0.38}) const;
+
 private:
+    using certifier_type = detail::box_certifier<constraint_set_type, occlusion_type, I>;
+    certifier_type certifier(std::size_t facet_index) const;
+
     /// An undecided box: the position box with every orientation (nothing decided about aim).
     static void push_boundary(result_type& out, const position_box<I>& p, boundary_reason why);
 
@@ -195,6 +231,17 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     const auto seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
 
     // ---- stage 1: positions -----------------------------------------------------------------
+    // With refinement the stage paves at ε_p, then refines its BOUNDARY boxes down to the
+    // refinement's width, largest first, until its own deadline; that deadline is not the
+    // run's: the orientation stage still follows.
+    const double split_width = options.refine ? options.refine->width(options.position_eps) : options.position_eps;
+    std::optional<clock::time_point> refine_deadline;
+    if (options.refine) {
+        if (options.refine->time_limit)
+            refine_deadline = start + *options.refine->time_limit;
+        else if (options.time_limit)
+            refine_deadline = start + *options.time_limit / 2;
+    }
     paver_options popt;
     popt.max_boxes = options.max_boxes;
     popt.deadline = deadline;
@@ -205,15 +252,25 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             return options.progress(solve_progress{"position", s.boxes, s.pending, 0, 0, seconds()});
         };
     }
+    const position_stage_options stage_options{.inner_contraction = options.inner_contraction,
+                                               .occlusion_cuts = options.occlusion_cuts,
+                                               .leaf_corner_boxes = options.leaf_corner_boxes};
+    std::optional<position_refinement> refinement;
+    if (options.refine) refinement = position_refinement{split_width, refine_deadline};
     auto stage1 = pave_positions<I, constraint_set_type, contraction_type, bisector_type, buffer_type>(
-        problem, facet_index, occlusion_, popt, options.position_eps, options.stop, constraint_parameters_);
+        problem, facet_index, occlusion_, popt, options.position_eps, options.stop, constraint_parameters_, stage_options,
+        refinement);
     const auto& ps = stage1.boxes.stats;
-    st.contractions = ps.contractions;
+    st.contractions = stage1.counters.contractions;
     st.bisections = ps.bisections;
-    st.occlusion_tests = stage1.occlusion_tests;
+    st.occlusion_tests = stage1.counters.occlusion_tests;
+    st.inner_pieces = stage1.counters.inner_pieces;
+    st.occlusion_pieces = stage1.counters.occlusion_pieces;
+    st.corner_boxes = stage1.counters.corner_boxes;
     st.position_valid = stage1.boxes.valid.size();
     st.position_boundary = stage1.boxes.boundary.size() + stage1.boxes.pending.size();
     st.reason = ps.reason;
+    st.refinement_stopped = stage1.refinement_stopped;
     st.seconds_position = seconds();
     if (options.keep_tree) out.tree = std::move(stage1.boxes.tree);
 
@@ -224,10 +281,56 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     // ---- stage 2: orientations (Algorithm 3 lines 28–36) --------------------------------------
     // After a box budget the certified position boxes are still oriented, each once (no more
     // bisection); a deadline or cancellation (`halted`) leaves the rest undecided.
+    // Not below ε_p, even when refining: a position box that no orientation fits at ε_p is one
+    // where the facet barely fits the image, and halving it further multiplies boxes for little.
     bisector_type bisector(options.position_eps);  // may be stateful (round_robin)
-    std::vector<position_box<I>> todo(stage1.boxes.valid.rbegin(), stage1.boxes.valid.rend());
+    // Pieces carved off one box and halves of a refined leaf often tile a larger box: merged
+    // back, they need fewer orientation searches and give a wider installation tolerance.
+    const bool past_paper = options.inner_contraction || options.occlusion_cuts || options.leaf_corner_boxes;
+    if (past_paper) st.position_merges = detail::growth::merge_touching_positions(stage1.boxes.valid, options.position_eps);
     std::size_t done = ps.boxes;
     bool halted = st.reason == termination::deadline || st.reason == termination::cancelled;
+    std::vector<position_box<I>> todo;
+    todo.reserve(stage1.boxes.valid.size());
+    {
+        // Small position boxes in one cell of ε_p (pieces, corner boxes, refined leaves) are
+        // oriented together first: an orientation certified over their hull holds for each
+        // (constraint 5 over a position box holds over every box inside it). Cells whose hull
+        // cannot be oriented fall back to one search per box.
+        std::map<std::array<long long, 3>, std::vector<std::size_t>> cells;
+        const auto& valid = stage1.boxes.valid;
+        for (std::size_t i = 0; i < valid.size(); ++i) {
+            std::array<long long, 3> key{};
+            for (std::size_t k = 0; k < 3; ++k)
+                key[k] = static_cast<long long>(std::floor(mid(valid[i][k]) / options.position_eps));
+            cells[key].push_back(i);
+        }
+        for (const auto& [key, members] : cells) {
+            bool grouped = false;
+            if (members.size() > 1 && past_paper && !halted && !options.stop.stop_requested() &&
+                !(deadline && clock::now() >= *deadline)) {
+                position_box<I> h = valid[members[0]];
+                for (std::size_t i : members) h = hull(h, valid[i]);
+                ++done;
+                const orientation_result<I> o = orientation_.orient(h, f, camera_, options.orientation_eps);
+                st.orientation_certifications += o.certifications;
+                if (!o.boxes.empty()) {
+                    grouped = true;
+                    ++st.orientation_groups;
+                    for (std::size_t i : members) {
+                        for (const auto& e : o.boxes) {
+                            out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{valid[i], e}});
+                            ++st.valid;
+                        }
+                        st.valid_volume += volume(valid[i]);
+                    }
+                }
+            }
+            if (!grouped)
+                for (std::size_t i : members) todo.push_back(valid[i]);
+        }
+        std::reverse(todo.begin(), todo.end());  // popped from the back: in cell order
+    }
     while (!todo.empty()) {
         if (!halted) {
             if (options.stop.stop_requested()) {
@@ -256,6 +359,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
                 out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{p, e}});
                 ++st.valid;
             }
+            st.valid_volume += volume(p);
             continue;
         }
         if (st.reason != termination::completed) {  // a budget forbids bisecting further
@@ -273,8 +377,79 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
         todo.push_back(std::move(left));
     }
     st.seconds_orientation = seconds() - st.seconds_position;
+
+    // ---- past the paper: wider boxes (the installation tolerance) ------------------------------
+    if (options.grow && st.valid > 0) {
+        auto ok = certifier(facet_index);
+        std::vector<pose_box<I>> valid;
+        std::vector<classified_box<I>> rest;
+        for (auto& b : out.boxes) {
+            if (b.cls == box_class::valid) valid.push_back(b.box);
+            else rest.push_back(std::move(b));
+        }
+        st.merges = detail::growth::merge_touching(valid, [&](const position_box<I>& p, const orientation_box<I>& e) {
+            return ok.fov(p, e);
+        });
+        const auto finest = detail::finest_steps(*options.grow, options.position_eps, options.orientation_eps);
+        for (auto& b : valid) {
+            if (options.stop.stop_requested() || (deadline && clock::now() >= *deadline)) break;
+            const pose_box<I> g = detail::growth::grow(b, ok, finest, options.grow->max_certifications);
+            if (!(g == b)) ++st.grown, b = g;
+        }
+        detail::growth::drop_contained(valid);
+        out.boxes = std::move(rest);
+        st.valid = valid.size();
+        st.valid_volume = 0;
+        for (auto& b : valid) {
+            st.valid_volume += volume(b.position);
+            out.boxes.push_back(classified_box<I>{box_class::valid, std::move(b)});
+        }
+        st.orientation_certifications += ok.certifications;
+        st.seconds_growth = seconds() - st.seconds_position - st.seconds_orientation;
+    }
     st.seconds = seconds();
     return out;
+}
+
+template <class Policies>
+auto pose_solver<Policies>::certifier(std::size_t facet_index) const -> certifier_type {
+    const facet& f = part_->facet(facet_index);  // throws out_of_range("facet", ...)
+    return certifier_type(make_constraint_set<constraint_set_type>(position_problem{f, range_, task_}, constraint_parameters_),
+                          occlusion_, facet_index, f, fov_frustum<I>(camera_));
+}
+
+template <class Policies>
+bool pose_solver<Policies>::certify(std::size_t facet_index, const pose_box<I>& box) const {
+    auto ok = certifier(facet_index);
+    return ok(box);
+}
+
+template <class Policies>
+auto pose_solver<Policies>::grow(std::size_t facet_index, const pose_box<I>& box, const growth_options& options) const
+    -> pose_box<I> {
+    options.validate();
+    auto ok = certifier(facet_index);
+    if (!ok(box)) throw invalid_argument("box", "pose_solver::grow: the box is not certified for this facet");
+    // Outside a run there is no ε: the defaults of growth_options (1 mm, 0.005 rad) are the
+    // finest steps a run at ε_p = 0.064 m, ε_o = 0.32 rad would take.
+    return detail::growth::grow(box, ok, detail::finest_steps(options, 0.064, 0.32), options.max_certifications);
+}
+
+template <class Policies>
+auto pose_solver<Policies>::largest_box_around(std::size_t facet_index, const std::array<double, 6>& pose,
+                                               const growth_options& options, std::array<double, 2> eps) const
+    -> std::optional<pose_box<I>> {
+    options.validate();
+    for (double v : pose)
+        if (!std::isfinite(v))
+            throw invalid_argument("pose", "pose_solver::largest_box_around: the pose must be finite, got " +
+                                               detail::format_double(v));
+    if (!(eps[0] > 0 && eps[1] > 0 && std::isfinite(eps[0]) && std::isfinite(eps[1])))
+        throw invalid_argument("eps", "pose_solver::largest_box_around: eps must be positive and finite");
+    auto ok = certifier(facet_index);
+    const std::array<double, 6> reference{eps[0], eps[0], eps[0], eps[1], eps[1], eps[1]};
+    return detail::growth::largest_around<I>(pose, ok, reference, detail::finest_steps(options, eps[0], eps[1]),
+                                             options.max_certifications);
 }
 
 template <class Policies>
@@ -284,6 +459,7 @@ void pose_solver<Policies>::push_boundary(result_type& out, const position_box<I
     const orientation_box<I> all = orientation_box<I>::from_bounds({{{-pi_hi, pi_hi}, {0.0, pi_hi}, {-pi_hi, pi_hi}}});
     out.boxes.push_back(classified_box<I>{box_class::boundary, pose_box<I>{p, all}, why});
     ++out.stats.boundary;
+    out.stats.boundary_volume += volume(p);
     ++out.stats.boundary_reasons[static_cast<std::size_t>(why)];
 }
 

@@ -6,104 +6,274 @@
 // VISIBLE; it is discarded when the set proves it violated or occlusion says OCCLUDED;
 // otherwise it is bisected (largest-first by default) down to ε_p and then kept as BOUNDARY.
 // Occlusion is only asked about boxes the constraints already certify: elsewhere the box is
-// bisected anyway, and the exact occlusion test is the expensive part. Two savings follow
-// from that order, neither of which changes a VALID box:
-//  * A box inside one the set has certified is certified too (every point of it satisfies
-//    every constraint), so the boxes below an occlusion-PARTIAL box skip the contractor, which
-//    could not remove a point, and the set's test, and go straight to occlusion.
-//  * A box the bisector will not split is asked with occlusion_effort::visible_only (when the
-//    policy takes it): OCCLUDED would discard it and PARTIAL makes it BOUNDARY, so the costly
-//    search for an OCCLUDED certificate only decides which of the two non-VALID labels it gets.
-//    Such boxes are BOUNDARY with reason `occlusion`.
+// bisected anyway, and the exact occlusion test is the expensive part.
+// Past the paper, a partly valid box is not only bisected (position_stage_options):
+//  * Inner contraction: when the set can contract its complement (ComplementContractingSet),
+//    the part of an undecided box that certainly satisfies every constraint is carved off
+//    (solver/detail/carving.hpp) and goes straight to occlusion; only the rest is bisected. The
+//    paper gives up a layer about ε_p thick along every constraint boundary; this keeps it.
+//  * Occlusion cuts: when the occlusion policy can name the shadows of the triangles that may
+//    block (ShadowingOcclusionPolicy), the part of an occlusion-PARTIAL box outside all of them
+//    is carved off as VALID.
+// The stage is one InnerSeparator of the paver, whose state says whether the set already holds
+// on the whole box (an ancestor or a carving proved it): such boxes skip the contractor and the
+// set's test, which could not remove or decide anything, and go straight to occlusion. A box
+// the bisector will not split is asked with occlusion_effort::visible_only (when the policy
+// takes it): OCCLUDED would discard it and PARTIAL makes it BOUNDARY, so the costly search for
+// an OCCLUDED certificate only decides which of the two non-VALID labels it gets. Such boxes
+// are BOUNDARY with reason `occlusion`.
 #pragma once
 
+#include <algorithm>
+#include <chrono>
 #include <cstddef>
+#include <memory>
+#include <optional>
+#include <stop_token>
 #include <utility>
 #include <vector>
 
 #include "certipose/bisection/largest_first.hpp"
 #include "certipose/constraints/concept.hpp"
+#include "certipose/contractor/identity.hpp"
 #include "certipose/occlusion/concept.hpp"
 #include "certipose/paver/paver.hpp"
 #include "certipose/solver/contraction.hpp"
+#include "certipose/solver/detail/carving.hpp"
 #include "certipose/solver/task.hpp"
 
 namespace certipose {
 
-namespace detail {
-
-/// The boxes the constraint set has certified whose parts are still being paved: the chain of
-/// ancestors of the current box (the paver pops children right after their parent when the
-/// buffer is depth-first; with another buffer the chain is cut more often, which only costs
-/// the saving). Shared by the stage's contractor and test.
-template <class Box>
-class certified_ancestors {
-public:
-    /// Is `b` inside a box the set certified? Drops the ancestors that do not contain it.
-    bool covers(const Box& b) {
-        while (!chain_.empty()) {
-            if (inside(b, chain_.back())) return true;
-            chain_.pop_back();
-        }
-        return false;
-    }
-    void push(const Box& b) { chain_.push_back(b); }
-
-private:
-    static bool inside(const Box& b, const Box& a) {
-        for (std::size_t i = 0; i < b.size(); ++i)
-            if (!(lower(b[i]) >= lower(a[i]) && upper(b[i]) <= upper(a[i]))) return false;
-        return true;
-    }
-    std::vector<Box> chain_;
+/// The position stage's options beyond the paper (solve_options carries them).
+struct position_stage_options {
+    /// Carve the part of an undecided box that certainly satisfies the constraint set off it
+    /// (sets modelling ComplementContractingSet; the paper's set does).
+    bool inner_contraction = true;
+    /// Carve the certainly visible part off an occlusion-PARTIAL box (occlusion policies
+    /// modelling ShadowingOcclusionPolicy; aabb_occlusion does).
+    bool occlusion_cuts = true;
+    /// Pieces thinner than this (metres, in the dimension they are cut in) stay with the rest;
+    /// 0: a tenth of the bisector's precision.
+    double min_piece = 0.0;
+    /// Leaf corner boxes: of a box the bisector declines and that stays undecided, the largest
+    /// box certified from one of its corners (solver/detail/carving.hpp, corner_box) is VALID
+    /// and only the rest BOUNDARY. Its visibility costs one occlusion test (or the shadows).
+    bool leaf_corner_boxes = true;
 };
 
+/// Counters of the position stage.
+struct position_stage_counters {
+    std::size_t contractions = 0;      ///< calls to the set's contractor
+    std::size_t occlusion_tests = 0;   ///< occlusion classifications
+    std::size_t inner_pieces = 0;      ///< pieces the set's complement contraction carved off
+    std::size_t occlusion_pieces = 0;  ///< VALID pieces carved off occlusion-PARTIAL boxes
+    std::size_t corner_boxes = 0;      ///< VALID corner boxes split off leaves
+    std::size_t shadow_walks = 0;      ///< tree walks collecting the shadows of possible blockers
+};
+
+namespace detail {
+
 /// A Contractor that forwards to a constraint set owned elsewhere (the stage's local set), so
-/// contractor policies can wrap it without copying the set. A box inside a certified one holds
-/// no point to remove: left as it is.
+/// contraction policies can wrap it without copying the set.
 template <class Set, class Box>
 struct set_contractor {
     Set* set = nullptr;
-    certified_ancestors<Box>* certified = nullptr;
-    void contract(Box& box) {
-        if (!certified->covers(box)) set->contract(box);
-    }
+    void contract(Box& box) { set->contract(box); }
 };
 
-/// The paver's inner test: constraint set first (unless an ancestor is certified), then
-/// occlusion for certified boxes, with the least effort that decides the box's fate.
-template <class Set, class Occlusion, class Bisector, class Box>
-struct position_test {
+/// The paver's inner separator (see the header comment).
+template <class Set, class Contractor, class Occlusion, class Bisector, class I>
+struct position_separator {
+    using box = position_box<I>;
+    struct state {
+        bool certified = false;  ///< the constraint set holds on the whole box
+        bool visible = false;    ///< occlusion: VISIBLE from the whole box
+        bool rest = false;       ///< what a leaf's corner box left: tested once more, not split
+        /// For a box left undecided by the set where the bisector stops: the constraint that
+        /// stayed undecided (the BOUNDARY box's reason), found by the same evaluation as the test.
+        std::optional<boundary_reason> why{};
+        /// The shadows of every triangle that may block a sight line from the box (found for
+        /// an ancestor: one tree walk serves all the boxes below it); null until needed.
+        std::shared_ptr<const shadow_list<I>> shadows{};
+        friend bool operator==(const state&, const state&) = default;
+    };
+
     Set* set;
+    Contractor contractor;
     const Occlusion* occlusion;
     std::size_t facet;
-    std::size_t* occlusion_tests;
-    certified_ancestors<Box>* certified;
     Bisector bisector;  // a copy of the paver's: asked only whether it would split the box
+    position_stage_options options;
+    double min_piece;
+    position_stage_counters* count;
+    shadow_cache<I> cache{};
 
-    verdict test(const Box& box) {
-        if (!certified->covers(box)) {
-            const verdict v = set->test(box);
-            if (v != verdict::satisfied) return v;
-            certified->push(box);
+    verdict separate(box& b, state& s, piece_sink<box, state>& sink) {
+        const bool leaf = !bisector.choose(b).has_value();
+        if (!s.certified) {
+            contractor.contract(b);  // Algorithm 1 line 5
+            ++count->contractions;
+            if (is_empty(b)) return verdict::violated;
+            const verdict v = set->test(b);  // lines 10–11
+            if (v == verdict::violated) return verdict::violated;
+            if (v == verdict::undecided) {
+                bool certified = false;
+                if constexpr (ComplementContractingSet<Set, I>) {
+                    if (options.inner_contraction && !s.rest) {
+                        box failing = b;
+                        set->contract_complement(failing);
+                        if (is_empty(failing)) {
+                            certified = true;  // no position of b violates the set: on to occlusion
+                        } else {
+                            count->inner_pieces += carve(b, failing, min_piece, [&](box&& piece) {
+                                state ps = s;
+                                ps.certified = true;
+                                sink.pending(std::move(piece), std::move(ps));
+                            });
+                        }
+                    }
+                }
+                if (!certified) {
+                    // Where the bisector stops, the constraint still undecided is the BOUNDARY
+                    // box's reason (asked now: the state carries it to the end of the run).
+                    if (leaf) s.why = undecided_constraint<I>(*set, b);
+                    if (leaf && options.leaf_corner_boxes && !s.rest && see(b, s, false) != visibility::occluded &&
+                        (s.visible || s.shadows))
+                        if (auto inner = corner_box(b, [&](const box& q) {
+                                return set->test(q) == verdict::satisfied && (s.visible || outside(*s.shadows, q));
+                            }, 6)) {
+                            split_off(b, std::move(*inner), s, sink);
+                            // b is now one of the rest, decided here as the others will be
+                            if (is_empty(b)) return verdict::violated;  // nothing left
+                            const bool sees = s.visible || (s.shadows && outside(*s.shadows, b));
+                            if (set->test(b) == verdict::satisfied && sees) return verdict::satisfied;
+                            s.why = undecided_constraint<I>(*set, b);
+                        }
+                    return verdict::undecided;
+                }
+            }
+            s.certified = true;
         }
-        ++*occlusion_tests;
-        visibility seen;
-        if constexpr (EffortAwareOcclusionPolicy<Occlusion, typename Box::interval_type>)
-            seen = occlusion->classify(box, facet, bisector.choose(box) ? occlusion_effort::full
-                                                                        : occlusion_effort::visible_only);
-        else
-            seen = occlusion->classify(box, facet);
-        switch (seen) {
-            case visibility::visible: return verdict::satisfied;
-            case visibility::occluded: return verdict::violated;
-            case visibility::partial: break;
+        const visibility seen = see(b, s, !leaf);
+        if (seen == visibility::visible) return verdict::satisfied;
+        if (seen == visibility::occluded) return verdict::violated;
+        if (!s.shadows) return verdict::undecided;
+        // Occlusion cut: whatever lies outside the hull of the shadows in b sees the facet.
+        const rounding_guard<I> rounding;
+        box blocked = box::empty();
+        for (const auto* sh : *s.shadows) {
+            box t = b;
+            contract_shadow(t, *sh);
+            blocked = hull(blocked, t);
+            if (blocked == b) break;
         }
+        if (is_empty(blocked)) {
+            s.visible = true;
+            return verdict::satisfied;
+        }
+        if (s.rest) return verdict::undecided;
+        if (!(blocked == b))
+            count->occlusion_pieces += carve(b, blocked, min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
+        if (leaf && options.leaf_corner_boxes)
+            if (auto inner = corner_box(b, [&](const box& q) { return outside(*s.shadows, q); }, 6)) {
+                split_off(b, std::move(*inner), s, sink);
+                if (is_empty(b)) return verdict::violated;  // nothing left
+                if (outside(*s.shadows, b)) return verdict::satisfied;
+            }
         return verdict::undecided;
+    }
+
+private:
+    /// Occlusion of b, from what the state knows or one occlusion test (with `full_effort` for
+    /// boxes to be bisected: an OCCLUDED proof prunes them), and for a PARTIAL box the shadows
+    /// of its possible blockers (occlusion cuts), which the boxes inside it inherit. A box that
+    /// inherited shadows is asked again only when they cover it (no cut is possible then, but an
+    /// OCCLUDED proof may prune it).
+    visibility see(const box& b, state& s, bool full_effort) {
+        if (s.visible) return visibility::visible;
+        if (s.shadows) {
+            const rounding_guard<I> rounding;
+            bool covered = false, any = false;
+            for (const auto* sh : *s.shadows) {
+                box t = b;
+                contract_shadow(t, *sh);
+                if (is_empty(t)) continue;
+                any = true;
+                if (t == b) { covered = true; break; }
+            }
+            if (!any) {
+                s.visible = true;
+                return visibility::visible;
+            }
+            if (!(covered && full_effort)) return visibility::partial;
+        }
+        ++count->occlusion_tests;
+        const visibility seen = classify(b, full_effort);
+        if (seen == visibility::visible) s.visible = true;
+        if (seen != visibility::partial || s.shadows) return seen;
+        if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
+            if (options.occlusion_cuts) {
+                auto list = std::make_shared<shadow_list<I>>();
+                auto keep = [&](std::size_t triangle) {
+                    const auto& sh = cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); });
+                    const rounding_guard<I> rounding;
+                    box t = b;
+                    contract_shadow(t, sh);
+                    if (!is_empty(t)) list->push_back(&sh);
+                    return true;
+                };
+                ++count->shadow_walks;
+                if (occlusion->blockers(b, facet, keep)) s.shadows = std::move(list);
+            }
+        }
+        return seen;
+    }
+
+    /// No point of q lies in a shadow of the list.
+    static bool outside(const shadow_list<I>& list, const box& q) {
+        const rounding_guard<I> rounding;
+        for (const auto* sh : list) {
+            box t = q;
+            contract_shadow(t, *sh);
+            if (!is_empty(t)) return false;
+        }
+        return true;
+    }
+
+    /// `inner` (certified) is VALID; the rest of b, at most six boxes, is BOUNDARY: all but one
+    /// go to the sink, b becomes the last.
+    void split_off(box& b, box&& inner, state& s, piece_sink<box, state>& sink) {
+        ++count->corner_boxes;
+        s.rest = true;  // b becomes one of the rest: its reason is asked again at the end
+        s.why.reset();
+        const state& rest = s;
+        std::vector<box> pieces;
+        box_difference(b, inner, [&](box&& piece) { pieces.push_back(std::move(piece)); });
+        sink.valid(std::move(inner));
+        if (pieces.empty()) {  // the corner box is all of b: b is done
+            b = box::empty();
+            return;
+        }
+        for (std::size_t i = 0; i + 1 < pieces.size(); ++i) sink.pending(std::move(pieces[i]), rest);
+        b = std::move(pieces.back());
+    }
+
+    visibility classify(const box& b, bool full_effort) const {
+        if constexpr (EffortAwareOcclusionPolicy<Occlusion, I>)
+            return occlusion->classify(b, facet, full_effort ? occlusion_effort::full : occlusion_effort::visible_only);
+        else
+            return occlusion->classify(b, facet);
     }
 };
 
 }  // namespace detail
+
+/// A refinement pass after the paving at ε_p (solve_options::refine): the BOUNDARY boxes are
+/// paved again, largest first, down to `min_width`, until `deadline`.
+struct position_refinement {
+    double min_width = 0.0;
+    std::optional<std::chrono::steady_clock::time_point> deadline{};
+};
 
 /// Result of the position stage for one facet.
 template <Interval I>
@@ -112,39 +282,87 @@ struct position_stage_result {
     /// Why each BOUNDARY box of `boxes.boundary` (same order) was left undecided.
     std::vector<boundary_reason> boundary_reasons;
     position_box<I> initial_box;
-    std::size_t occlusion_tests = 0;
+    position_stage_counters counters;
+    bool refinement_stopped = false;  ///< the refinement's deadline ended it (boxes left BOUNDARY)
 };
 
 /// Paves the positions of one facet. `Set` models PositionConstraintSet over I and is built from
 /// `problem` and `parameters`; `Contraction` is a contraction policy (solver/contraction.hpp);
-/// `Bisector` is constructible from ε_p.
+/// `Bisector` is constructible from ε_p (`position_eps`, the width below which boxes are not
+/// split); `Buffer` orders the unclassified boxes.
 template <Interval I, class Set, class Contraction = contraction::hc4, class Bisector = largest_first,
           class Buffer = depth_first, class Occlusion>
     requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
 position_stage_result<I> pave_positions(const position_problem& problem, std::size_t facet_index,
                                         const Occlusion& occlusion, const paver_options& options,
                                         double position_eps, std::stop_token stop = {},
-                                        const constraint_parameters_t<Set>& parameters = {}) {
+                                        const constraint_parameters_t<Set>& parameters = {},
+                                        const position_stage_options& stage = {},
+                                        const std::optional<position_refinement>& refine = {}) {
     Set set = make_constraint_set<Set>(problem, parameters);
     position_stage_result<I> out;
     out.initial_box = set.initial_box();
-    detail::certified_ancestors<position_box<I>> certified;
-    auto contractor = Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set, &certified});
-    detail::position_test<Set, Occlusion, Bisector, position_box<I>> test{
-        &set, &occlusion, facet_index, &out.occlusion_tests, &certified, Bisector(position_eps)};
-    paver<position_box<I>, decltype(contractor), decltype(test), Bisector, Buffer> p(
-        std::move(contractor), test, Bisector(position_eps), options);
     if (is_empty(out.initial_box)) {
         out.boxes.stats.reason = termination::completed;
         return out;
     }
+    auto contractor = Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set});
+    using separator = detail::position_separator<Set, decltype(contractor), Occlusion, Bisector, I>;
+    separator sep{&set, std::move(contractor), &occlusion, facet_index, Bisector(position_eps), stage,
+                  stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters};
+    paver<position_box<I>, identity, separator, Bisector, Buffer> p(identity{}, std::move(sep), Bisector(position_eps),
+                                                                    options);
     out.boxes = p.run(out.initial_box, stop);
-    // A BOUNDARY box was contracted and tested just before the bisector declined it, so testing
-    // it again gives the same answer: undecided by the set (which constraint, if it says), or
-    // certified by the set and PARTIAL for occlusion. Costs one test per BOUNDARY box.
+    std::vector<typename separator::state> states = p.boundary_states();
+    if (refine && out.boxes.stats.reason == termination::completed && !out.boxes.boundary.empty()) {
+        // Refinement: the BOUNDARY boxes again, with what was learnt about each (the set holds,
+        // it sees the facet, its shadows), largest first, under the refinement's deadline.
+        for (auto& st : states) st.rest = false;
+        paver_options again = options;
+        if (refine->deadline && (!again.deadline || *refine->deadline < *again.deadline)) again.deadline = refine->deadline;
+        again.max_boxes = options.max_boxes > out.boxes.stats.boxes ? options.max_boxes - out.boxes.stats.boxes : 1;
+        again.record_tree = false;
+        separator fine{&set, Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set}), &occlusion, facet_index,
+                       Bisector(refine->min_width), stage, stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10,
+                       &out.counters};
+        paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(identity{}, std::move(fine),
+                                                                                     Bisector(refine->min_width), again);
+        auto more = q.run_from(out.boxes.boundary, states, stop);
+        const auto now = std::chrono::steady_clock::now();
+        out.refinement_stopped = more.stats.reason == termination::deadline && refine->deadline && now >= *refine->deadline &&
+                                 !(options.deadline && now >= *options.deadline);
+        auto& st = out.boxes.stats;
+        st.boxes += more.stats.boxes, st.bisections += more.stats.bisections, st.inner_tests += more.stats.inner_tests;
+        st.valid += more.stats.valid, st.valid_volume += more.stats.valid_volume;
+        st.discarded += more.stats.discarded, st.discarded_volume += more.stats.discarded_volume;
+        st.boundary = more.stats.boundary, st.boundary_volume = more.stats.boundary_volume;
+        st.peak_pending = std::max(st.peak_pending, more.stats.peak_pending);
+        if (!out.refinement_stopped) st.reason = more.stats.reason;
+        for (auto& v : more.valid) out.boxes.valid.push_back(std::move(v));
+        out.boxes.boundary = std::move(more.boundary);
+        states = q.boundary_states();
+        if (out.refinement_stopped) {
+            // Not refined yet, but decided as far as the paving at ε_p went: BOUNDARY, for the
+            // reason the set gives.
+            for (auto& b : more.pending) {
+                st.boundary_volume += detail::paving_volume(b);
+                out.boxes.boundary.push_back(std::move(b));
+                states.emplace_back();
+            }
+            st.boundary = out.boxes.boundary.size();
+        } else {
+            out.boxes.pending = std::move(more.pending);
+            st.pending = more.stats.pending, st.pending_volume = more.stats.pending_volume;
+        }
+    }
+    // A BOUNDARY box was separated just before the bisector declined it: undecided by the set
+    // (which constraint, if it says: one more test), or certified by it and PARTIAL for occlusion.
     out.boundary_reasons.reserve(out.boxes.boundary.size());
-    for (const auto& b : out.boxes.boundary)
-        out.boundary_reasons.push_back(undecided_constraint<I>(set, b).value_or(boundary_reason::occlusion));
+    for (std::size_t i = 0; i < out.boxes.boundary.size(); ++i)
+        out.boundary_reasons.push_back(
+            states[i].certified ? boundary_reason::occlusion
+            : states[i].why     ? *states[i].why
+                                : undecided_constraint<I>(set, out.boxes.boundary[i]).value_or(boundary_reason::occlusion));
     return out;
 }
 

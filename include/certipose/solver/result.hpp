@@ -41,7 +41,20 @@ struct solve_stats {
     std::size_t position_boundary = 0;
     std::size_t contractions = 0, bisections = 0;
     std::size_t occlusion_tests = 0;
+    std::size_t inner_pieces = 0;      ///< position pieces the complement contraction carved off
+    std::size_t occlusion_pieces = 0;  ///< VALID position pieces carved off occlusion-PARTIAL boxes
+    std::size_t corner_boxes = 0;      ///< VALID corner boxes split off boxes left undecided at ε_p
+    std::size_t position_merges = 0;   ///< VALID position boxes merged with a neighbour before orientation
+    /// Volumes (m³) of the position parts of the VALID and BOUNDARY boxes returned: sums of
+    /// products of widths, a measure of the answer, not certified bounds.
+    double valid_volume = 0, boundary_volume = 0;
+    /// The refinement's own time limit ended the position stage (solve_options::refine).
+    bool refinement_stopped = false;
+    /// solve_options::grow: pairs of VALID boxes merged, boxes widened by growth.
+    std::size_t merges = 0, grown = 0;
+    double seconds_growth = 0;
     std::size_t orientation_certifications = 0;  ///< 6D interval certifications attempted
+    std::size_t orientation_groups = 0;  ///< cells of small position boxes oriented together
     double seconds_position = 0, seconds_orientation = 0, seconds = 0;
     termination reason = termination::completed;
 };

@@ -49,6 +49,55 @@ struct solve_progress {
     double seconds;             ///< since the run started
 };
 
+/// Anytime refinement below ε_p (solve_options::refine): the position stage paves with the
+/// largest undecided box first and keeps splitting boxes down to `min_width` instead of ε_p,
+/// until a budget ends it. Stopping early leaves the boxes not yet decided BOUNDARY (reason
+/// `budget`): the answer is sound whenever it stops, and more complete the longer it runs.
+struct refinement {
+    /// Boxes narrower than this (metres) are not split; 0: ε_p / 16.
+    double min_width = 0.0;
+    /// Budget of the position stage's refinement; the orientation stage then orients what it
+    /// certified. Unset: half of solve_options::time_limit when that is set, else no time
+    /// limit (the box budget and min_width still end it).
+    std::optional<std::chrono::steady_clock::duration> time_limit{};
+
+    void validate(double position_eps) const {
+        if (!(min_width >= 0.0) || !std::isfinite(min_width))
+            throw invalid_argument("refine.min_width", "solve_options: refine.min_width must be >= 0 and finite, got " +
+                                                           detail::format_double(min_width));
+        if (min_width > position_eps)
+            throw invalid_argument("refine.min_width", "solve_options: refine.min_width " + detail::format_double(min_width) +
+                                                           " is wider than position_eps " + detail::format_double(position_eps) +
+                                                           ": nothing would be refined");
+        if (time_limit && time_limit->count() <= 0)
+            throw invalid_argument("refine.time_limit", "solve_options: refine.time_limit must be positive");
+    }
+    /// The width below which boxes are not split.
+    double width(double position_eps) const noexcept { return min_width > 0.0 ? min_width : position_eps / 16; }
+};
+
+/// How boxes are widened (solve_options::grow, pose_solver::grow / largest_box_around).
+struct growth_options {
+    /// The finest step of a position face or half-width, metres; 0: ε_p / 64 of the run (or 1 mm
+    /// outside a run).
+    double position_step = 0.0;
+    /// The finest step of an Euler-angle face or half-width, radians; 0: ε_o / 64 (or 0.005).
+    double orientation_step = 0.0;
+    /// Certifications spent on one box at most (each costs an occlusion test when a position
+    /// face moves, ~0.1 ms, and an interval evaluation of the field of view, ~10 µs).
+    std::size_t max_certifications = 256;
+
+    void validate() const {
+        if (!(position_step >= 0.0) || !std::isfinite(position_step))
+            throw invalid_argument("grow.position_step", "growth_options: position_step must be >= 0 and finite, got " +
+                                                             detail::format_double(position_step));
+        if (!(orientation_step >= 0.0) || !std::isfinite(orientation_step))
+            throw invalid_argument("grow.orientation_step",
+                                   "growth_options: orientation_step must be >= 0 and finite, got " +
+                                       detail::format_double(orientation_step));
+    }
+};
+
 /// Settings of one run (paper §8: ε_p = 0.1 m, ε_o = 0.38 rad).
 struct solve_options {
     double position_eps = 0.1;      ///< ε_p, metres: position boxes narrower than this are not split
@@ -59,6 +108,19 @@ struct solve_options {
     std::function<bool(const solve_progress&)> progress{};
     std::stop_token stop{};  ///< cancellation from another thread
     bool keep_tree = false;  ///< also return the bisection tree of the position stage
+    /// Past the paper: carve the part of a partly valid position box that certainly satisfies
+    /// the position constraints off it instead of bisecting it whole (inner contraction).
+    bool inner_contraction = true;
+    /// Past the paper: carve the certainly visible part off an occlusion-PARTIAL box.
+    bool occlusion_cuts = true;
+    /// Past the paper: of a box left undecided at ε_p, certify the largest box from one of its
+    /// corners and leave only the rest BOUNDARY. All three off: the paper's paving.
+    bool leaf_corner_boxes = true;
+    /// Anytime refinement below ε_p (see `refinement`); unset: the paper's ε_p stopping rule.
+    std::optional<refinement> refine{};
+    /// Widen the VALID boxes into fewer, larger ones (merge neighbours, then move every face
+    /// out while the box stays certified: solver/detail/growth.hpp); unset: boxes as paved.
+    std::optional<growth_options> grow{};
 
     void validate() const {
         if (!(position_eps > 0.0) || !std::isfinite(position_eps))
@@ -69,6 +131,8 @@ struct solve_options {
                                    "solve_options: orientation_eps must be positive and finite, got " +
                                        detail::format_double(orientation_eps));
         if (max_boxes == 0) throw invalid_argument("max_boxes", "solve_options: max_boxes must be at least 1");
+        if (refine) refine->validate(position_eps);
+        if (grow) grow->validate();
     }
 };
 

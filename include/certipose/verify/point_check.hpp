@@ -11,6 +11,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <random>
 #include <span>
 #include <string>
 #include <vector>
@@ -81,20 +83,45 @@ inline double point_triangle_distance(const Eigen::Vector3d& p, const std::array
 
 /// Möller–Trumbore: does the open segment (p, q) cross triangle t? Hits within `end_slack` of
 /// either end (in segment parameter) are ignored: the segment may touch the facet's own edges at
-/// q, where neighbours of the facet meet it (DESIGN.md §3.6).
+/// q, where neighbours of the facet meet it (DESIGN.md §3.6). With `edge_slack` > 0, hits within
+/// that distance (in barycentric coordinates) of t's boundary are ignored too: a pose whose sight
+/// line grazes a blocker's edge to within rounding is not called blocked (see `tolerance`).
 inline bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
-                                  const std::array<Eigen::Vector3d, 3>& t, double end_slack = 1e-9) {
+                                  const std::array<Eigen::Vector3d, 3>& t, double end_slack = 1e-9,
+                                  double edge_slack = 0.0) {
     const Eigen::Vector3d d = q - p, e1 = t[1] - t[0], e2 = t[2] - t[0];
+    if (edge_slack > 0.0) {
+        // With a tolerance, division-free: the segment crosses t's plane transversally (both
+        // ends off it by more than the slack, on either side) and passes each edge line of t on
+        // the same side, each signed volume above the slack relative to its scale. Grazes (a
+        // sight line through an edge or vertex of t, or along its plane, to within ~1e-9 of the
+        // distances involved) are forgiven: plain doubles cannot tell which side they are on.
+        const Eigen::Vector3d n = e1.cross(e2).normalized();
+        const double dp = n.dot(p - t[0]), dq = n.dot(q - t[0]), reach = edge_slack * d.norm();
+        if (std::abs(dp) <= reach || std::abs(dq) <= reach || (dp > 0) == (dq > 0)) return false;
+        int side = 0;
+        for (int i = 0; i < 3; ++i) {
+            const Eigen::Vector3d a = t[i] - p, b = t[(i + 1) % 3] - p;
+            const double vol = a.dot(b.cross(d)), scale = a.norm() * b.norm() * d.norm();
+            if (std::abs(vol) <= edge_slack * scale) return false;
+            const int s = vol > 0 ? 1 : -1;
+            if (side != 0 && s != side) return false;
+            side = s;
+        }
+        // The crossing point is inside t; the end slack keeps the segment's own ends out.
+        const double tt = dp / (dp - dq);
+        return tt > end_slack && tt < 1.0 - end_slack;
+    }
     const Eigen::Vector3d h = d.cross(e2);
     const double a = e1.dot(h);
     if (std::abs(a) < 1e-300) return false;  // parallel (a grazing segment in the plane is ignored)
     const double f = 1.0 / a;
     const Eigen::Vector3d s = p - t[0];
     const double u = f * s.dot(h);
-    if (u < 0.0 || u > 1.0) return false;
+    if (u < edge_slack || u > 1.0 - edge_slack) return false;
     const Eigen::Vector3d qv = s.cross(e1);
     const double v = f * d.dot(qv);
-    if (v < 0.0 || u + v > 1.0) return false;
+    if (v < edge_slack || u + v > 1.0 - edge_slack) return false;
     const double tt = f * e2.dot(qv);
     return tt > end_slack && tt < 1.0 - end_slack;
 }
@@ -124,9 +151,9 @@ struct occluders {
         }
         return o;
     }
-    bool blocks(const Eigen::Vector3d& p, const Eigen::Vector3d& q) const {
+    bool blocks(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double edge_slack = 0.0) const {
         for (const auto& t : triangles)
-            if (segment_hits_triangle(p, q, t)) return true;
+            if (segment_hits_triangle(p, q, t, 1e-9, edge_slack)) return true;
         return false;
     }
 };
@@ -140,21 +167,33 @@ inline std::vector<Eigen::Vector3d> facet_targets(const facet& f, std::span<cons
     return pts;
 }
 
+/// A relative tolerance for poses on the boundary of a box: 0 judges every constraint exactly as
+/// written (in doubles); `tolerance` = t > 0 forgives violations smaller than t relative to the
+/// quantities compared (distances, the view-angle sine, pixel coordinates, barycentric
+/// coordinates of a grazed blocker). Box corners need it: VALID boxes carved off by the inner
+/// contraction or an occlusion cut touch a constraint boundary to within rounding, where plain
+/// double evaluation may land either side; a real violation is far larger than 1e-9.
+struct tolerance {
+    double relative = 0.0;
+};
+
 /// Checks the position constraints (1–4 and, if `scene` is given, 6) of DESIGN.md §3 at p.
 inline violations check_position(const Eigen::Vector3d& p, const facet& f, double d_min, double d_max,
                                  double min_view_angle, const occluders* scene = nullptr,
-                                 std::span<const Eigen::Vector3d> targets = {}) {
+                                 std::span<const Eigen::Vector3d> targets = {}, tolerance tol = {}) {
     violations r;
+    const double t = tol.relative;
     const double dist = point_triangle_distance(p, f.v);
     r.on_facet = !(dist > 0.0);
     double far = 0;
     for (const auto& v : f.v) far = std::max(far, (p - v).norm());
-    r.focus = dist < d_min || far > d_max;
-    r.backface = !((p - f.v[0]).dot(f.normal) > 0.0);
-    r.view_angle = (p - f.centroid).dot(f.normal) < std::sin(min_view_angle) * (p - f.centroid).norm();
+    r.focus = dist < d_min * (1 - t) || far > d_max * (1 + t);
+    const double scale = (p - f.v[0]).norm();
+    r.backface = !((p - f.v[0]).dot(f.normal) > -t * scale);
+    r.view_angle = (p - f.centroid).dot(f.normal) < (std::sin(min_view_angle) - t) * (p - f.centroid).norm();
     if (scene)
         for (const auto& q : targets)
-            if (scene->blocks(p, q)) {
+            if (scene->blocks(p, q, t)) {
                 r.occluded = true;
                 break;
             }
@@ -162,24 +201,73 @@ inline violations check_position(const Eigen::Vector3d& p, const facet& f, doubl
 }
 
 /// Constraint 5 of DESIGN.md §3: every vertex in front of the camera and inside the image.
-inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam) {
+inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolerance tol = {}) {
     const Eigen::Matrix3d R = zxz(x.phi, x.gamma, x.beta);
+    const double mu = tol.relative * cam.width_px, mv = tol.relative * cam.height_px;
     for (const auto& v : f.v) {
         const Eigen::Vector3d qc = R.transpose() * (v - x.position);
         if (!(qc.z() > 0.0)) return false;
         const Eigen::Vector3d uvw = cam.K * qc;
         const double u = uvw.x() / uvw.z(), w = uvw.y() / uvw.z();
-        if (u < 0.0 || u > cam.width_px || w < 0.0 || w > cam.height_px) return false;
+        if (u < -mu || u > cam.width_px + mu || w < -mv || w > cam.height_px + mv) return false;
     }
     return true;
 }
 
 /// Every constraint of DESIGN.md §3 at one pose.
 inline violations check_pose(const pose& x, const facet& f, const camera_view& cam, double min_view_angle,
-                             const occluders* scene = nullptr, std::span<const Eigen::Vector3d> targets = {}) {
-    violations r = check_position(x.position, f, cam.d_min, cam.d_max, min_view_angle, scene, targets);
-    r.fov = !fov_ok(x, f, cam);
+                             const occluders* scene = nullptr, std::span<const Eigen::Vector3d> targets = {},
+                             tolerance tol = {}) {
+    violations r = check_position(x.position, f, cam.d_min, cam.d_max, min_view_angle, scene, targets, tol);
+    r.fov = !fov_ok(x, f, cam, tol);
     return r;
+}
+
+/// Positions drawn uniformly in the facet's bounding box grown by d_max that satisfy
+/// constraints 1–4 and see 15 points of the facet (vertices, edge midpoints, centroid and 8 random
+/// points) without a blocked sight line: an independent sample of the true inspection space of
+/// the positions (constraint 5 is left out: the question is which positions, not which aims).
+/// Stops after `wanted` positions or 400·wanted draws; `drawn` counts the draws.
+struct position_sample {
+    std::vector<Eigen::Vector3d> valid;
+    std::size_t drawn = 0;
+};
+inline position_sample sample_valid_positions(const triangle_mesh& mesh, std::size_t facet_index, double d_min,
+                                              double d_max, double min_view_angle, std::size_t wanted,
+                                              std::uint32_t seed) {
+    const facet& f = mesh.facet(facet_index);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Eigen::Vector3d> bary;
+    for (int k = 0; k < 8; ++k) {
+        double a = u(rng), b = u(rng);
+        if (a + b > 1) a = 1 - a, b = 1 - b;
+        bary.emplace_back(1 - a - b, a, b);
+    }
+    const auto targets = facet_targets(f, bary);
+    const auto scene = occluders::of(mesh, facet_index);
+    const Eigen::Vector3d lo = f.bbox.min().array() - d_max, hi = f.bbox.max().array() + d_max;
+    position_sample out;
+    while (out.valid.size() < wanted && out.drawn < 400 * wanted) {
+        ++out.drawn;
+        const Eigen::Vector3d p(lo.x() + u(rng) * (hi.x() - lo.x()), lo.y() + u(rng) * (hi.y() - lo.y()),
+                                lo.z() + u(rng) * (hi.z() - lo.z()));
+        if (check_position(p, f, d_min, d_max, min_view_angle).any()) continue;  // cheap constraints first
+        if (check_position(p, f, d_min, d_max, min_view_angle, &scene, targets).any()) continue;
+        out.valid.push_back(p);
+    }
+    return out;
+}
+
+/// The 64 corners of a 6D box given by its bounds (x, y, z, φ, γ, β as [lower, upper]).
+inline std::array<pose, 64> corners(const std::array<std::array<double, 2>, 6>& b) {
+    std::array<pose, 64> out{};
+    for (std::size_t k = 0; k < 64; ++k) {
+        const auto at = [&](std::size_t d) { return b[d][(k >> d) & 1]; };
+        out[k].position = Eigen::Vector3d(at(0), at(1), at(2));
+        out[k].phi = at(3), out[k].gamma = at(4), out[k].beta = at(5);
+    }
+    return out;
 }
 
 }  // namespace certipose::verify

@@ -1,0 +1,144 @@
+// How much of the true inspection space the solver certifies, per mode, on the reference cases
+// of ../shared/cases/README.md (not a Google Benchmark: one table, every mode in the same run).
+//
+// The truth comes from an independent sampler (verify/point_check.hpp, plain doubles and ray
+// casting): positions drawn uniformly in the facet's bounding box grown by d_max that satisfy
+// constraints 1–4 and see 15 points of the facet (vertices, edge midpoints, centroid, 8 random
+// points) without a blocked sight line. The *certified share* is the fraction of them inside
+// the position part of a VALID box; the *position tolerance* of such a sample is the largest,
+// over the VALID boxes holding it, of the box's smallest position width (what a fitter may be
+// off by in every direction), reported with the Euler-angle widths of that box.
+//
+//   bench_completeness [samples=6000] [modes=paper,inner,full,refine,grow]
+#include <certipose/cgal.hpp>
+#include <certipose/io/json.hpp>
+#include <certipose/verify/point_check.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using I = certipose::boost_interval;
+using solver_t = certipose::pose_solver<certipose::with_camera<certipose::calibrated_camera>>;
+
+struct reference_case {
+    const char* mesh;
+    double scale;
+    std::size_t facet;
+    const char* camera;
+};
+
+const reference_case cases[] = {{"idler_riser.off", 0.0994878, 102, "camera.json"},
+                                {"featuretype.off", 0.0694832, 3262, "camera.json"},
+                                {"angle_block.off", 0.186104, 520, "camera_wide.json"},
+                                {"plate_holes.off", 0.00109127, 7, "camera.json"}};
+
+using truth = certipose::verify::position_sample;
+
+struct figures {
+    std::size_t valid = 0, boundary = 0, inside = 0;
+    double seconds = 0, valid_volume = 0;
+    std::vector<double> tol, phi, gamma, beta;  // per sample inside a VALID box
+};
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+figures measure(const certipose::solve_result<I>& r, const truth& t) {
+    figures out;
+    out.valid = r.stats.valid, out.boundary = r.stats.boundary, out.seconds = r.stats.seconds;
+    out.valid_volume = r.stats.valid_volume;
+    for (const auto& p : t.valid) {
+        double best = -1, phi = 0, gamma = 0, beta = 0;
+        for (const auto& b : r.boxes) {
+            if (b.cls != certipose::box_class::valid) continue;
+            const auto& pos = b.box.position;
+            bool in = true;
+            for (int k = 0; k < 3 && in; ++k) in = certipose::lower(pos[k]) <= p[k] && p[k] <= certipose::upper(pos[k]);
+            if (!in) continue;
+            double w = 1e300;
+            for (int k = 0; k < 3; ++k) w = std::min(w, certipose::upper(pos[k]) - certipose::lower(pos[k]));
+            if (w > best) {
+                best = w;
+                const auto& o = b.box.orientation;
+                phi = certipose::upper(o[0]) - certipose::lower(o[0]);
+                gamma = certipose::upper(o[1]) - certipose::lower(o[1]);
+                beta = certipose::upper(o[2]) - certipose::lower(o[2]);
+            }
+        }
+        if (best < 0) continue;
+        ++out.inside;
+        out.tol.push_back(best), out.phi.push_back(phi), out.gamma.push_back(gamma), out.beta.push_back(beta);
+    }
+    return out;
+}
+
+certipose::solve_options mode_options(const std::string& mode) {
+    certipose::solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
+    if (mode == "paper") o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
+    else if (mode == "inner") o.occlusion_cuts = o.leaf_corner_boxes = false;
+    else if (mode == "cuts") o.leaf_corner_boxes = false;
+    else if (mode == "leaf") o.occlusion_cuts = false;
+    else if (mode == "refine") {
+        o.time_limit = std::chrono::seconds(1);
+        o.refine = certipose::refinement{};
+    } else if (mode == "grow") {
+        o.grow = certipose::growth_options{};
+    } else if (mode == "refine_grow") {
+        o.time_limit = std::chrono::seconds(2);
+        o.refine = certipose::refinement{.time_limit = std::chrono::milliseconds(750)};
+        o.grow = certipose::growth_options{};
+    } else if (mode != "full") {
+        std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+        std::exit(2);
+    }
+    return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::size_t samples = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 6000;
+    std::vector<std::string> modes{"paper", "inner", "full", "refine"};
+    if (argc > 2) {
+        modes.clear();
+        std::stringstream in(argv[2]);
+        for (std::string m; std::getline(in, m, ',');) modes.push_back(m);
+    }
+    const std::string shared = CERTIPOSE_SHARED_MESHES;
+    const std::string cases_dir = shared + "/../cases/";
+    std::printf("| case | mode | VALID / BOUNDARY | certified share | s per facet | median tol (p10, p90) m | median φ / γ / β width rad | valid volume m³ |\n");
+    std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    for (const auto& c : cases) {
+        const auto mesh = certipose::read_mesh(shared + "/" + c.mesh, {.scale = c.scale});
+        const auto in = certipose::read_camera_task(cases_dir + c.camera);
+        const auto camera = in.calibrated();
+        const solver_t solver(mesh, camera, in.task);
+        const truth t = certipose::verify::sample_valid_positions(mesh, c.facet, solver.range().min, solver.range().max,
+                                                                  in.task.min_view_angle, samples, 12345);
+        for (const auto& mode : modes) {
+            auto r = solver.solve(c.facet, mode_options(mode));
+            double fastest = r.stats.seconds;  // the least of three runs: this machine's timing noise
+            if (mode != "refine" && mode != "refine_grow")
+                for (int rep = 0; rep < 2; ++rep) fastest = std::min(fastest, solver.solve(c.facet, mode_options(mode)).stats.seconds);
+            r.stats.seconds = fastest;
+            const figures f = measure(r, t);
+            std::printf("| %s (%zu) | %s | %zu / %zu | %.1f %% of %zu | %.3f | %.4f (%.4f, %.4f) | %.3f / %.3f / %.3f | %.4g |\n",
+                        c.mesh, c.facet, mode.c_str(), f.valid, f.boundary,
+                        t.valid.empty() ? 0.0 : 100.0 * static_cast<double>(f.inside) / static_cast<double>(t.valid.size()),
+                        t.valid.size(), f.seconds, quantile(f.tol, 0.5), quantile(f.tol, 0.1), quantile(f.tol, 0.9),
+                        quantile(f.phi, 0.5), quantile(f.gamma, 0.5), quantile(f.beta, 0.5), f.valid_volume);
+            std::fflush(stdout);
+        }
+    }
+}

@@ -1,0 +1,101 @@
+// certipose/solver/detail/box_certifier.hpp — "is every pose of this 6D box valid for this
+// facet?", answered with the solver's own proofs (pose_solver::certify and what builds on it).
+//
+// The position part must be certified by the constraint set (its test, or its complement
+// contraction leaving nothing), then by the occlusion policy (VISIBLE, or no shadow of a
+// possible blocker reaching the box), and the whole 6D box by certify_fov. `false` means "not
+// proven", never "proven invalid". The last position box and its answer are kept, so that
+// growing an orientation face costs one field-of-view evaluation.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "certipose/constraints/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/orientation/certify.hpp"
+#include "certipose/pose/pose_box.hpp"
+#include "certipose/solver/detail/carving.hpp"
+
+namespace certipose::detail {
+
+template <class Set, class Occlusion, Interval I>
+class box_certifier {
+public:
+    box_certifier(Set set, const Occlusion& occlusion, std::size_t facet_index, const facet& f, fov_frustum<I> frustum)
+        : set_(std::move(set)), occlusion_(&occlusion), facet_index_(facet_index), facet_(f), frustum_(std::move(frustum)) {}
+
+    /// Constraints 1–4 and 6 over the whole position box.
+    bool position(const position_box<I>& p) {
+        if (last_ && *last_ == p) return last_ok_;
+        last_ = p;
+        last_ok_ = prove_position(p);
+        prepared_.reset();
+        return last_ok_;
+    }
+
+    /// Every constraint over the whole 6D box.
+    bool operator()(const pose_box<I>& b) {
+        if (is_empty(b) || !position(b.position)) return false;
+        return fov(b.position, b.orientation);
+    }
+
+    /// Constraint 5 over position × orientation.
+    bool fov(const position_box<I>& p, const orientation_box<I>& o) {
+        ++certifications;
+        if (!(last_ && *last_ == p)) return certify_fov(p, o, facet_, frustum_) == verdict::satisfied;
+        if (!prepared_) prepared_.emplace(p, facet_);
+        return certify_fov(*prepared_, o, frustum_) == verdict::satisfied;
+    }
+
+    std::size_t certifications = 0;  ///< field-of-view evaluations
+
+private:
+    bool prove_position(const position_box<I>& p) {
+        if (is_empty(p)) return false;
+        const verdict v = set_.test(p);
+        if (v == verdict::violated) return false;
+        if (v == verdict::undecided) {
+            if constexpr (ComplementContractingSet<Set, I>) {
+                position_box<I> failing = p;
+                set_.contract_complement(failing);
+                if (!is_empty(failing)) return false;
+            } else {
+                return false;
+            }
+        }
+        visibility seen;
+        if constexpr (EffortAwareOcclusionPolicy<Occlusion, I>)
+            seen = occlusion_->classify(p, facet_index_, occlusion_effort::visible_only);
+        else
+            seen = occlusion_->classify(p, facet_index_);
+        if (seen == visibility::visible) return true;
+        if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
+            if (seen == visibility::partial) {
+                auto outside = [&](std::size_t triangle) {
+                    const auto& s = cache_.get(triangle, [&] { return occlusion_->shadow(facet_index_, triangle); });
+                    const rounding_guard<I> rounding;
+                    position_box<I> t = p;
+                    contract_shadow(t, s);
+                    return is_empty(t);  // stop at the first shadow that may reach the box
+                };
+                return occlusion_->blockers(p, facet_index_, outside);
+            }
+        }
+        return false;
+    }
+
+    Set set_;
+    const Occlusion* occlusion_;
+    std::size_t facet_index_;
+    facet facet_;
+    fov_frustum<I> frustum_;
+    std::optional<position_box<I>> last_{};
+    bool last_ok_ = false;
+    std::optional<fov_position<I>> prepared_{};
+    shadow_cache<I> cache_{};
+};
+
+}  // namespace certipose::detail

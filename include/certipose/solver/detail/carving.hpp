@@ -1,0 +1,259 @@
+// certipose/solver/detail/carving.hpp — cutting the certified part off a box (the position
+// stage's inner contraction and occlusion cuts).
+//
+// Both work the same way: a contraction keeps, of a box B, a box R holding every position of B
+// that may fail (violate a constraint of the set, or lose sight of the facet); whatever lies
+// outside R is certified. `carve` hands out B \ R as at most six pieces and leaves B narrowed to
+// the rest. Each piece stays one ulp clear of R's bounds, so its points are strictly outside R:
+// a constraint with a strict inequality (backface: (p − v1)·n > 0) may be an equality on R's
+// faces, never on the pieces. Slabs thinner than `min_width` are not cut off: they stay with
+// the rest, which the paver bisects anyway, instead of becoming boxes no camera can use.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "certipose/interval/operations.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/pose/pose_box.hpp"
+
+namespace certipose::detail {
+
+/// Emits the pieces of `box` outside `inner` (inner ⊆ box, not empty) and narrows `box` to the
+/// rest (see the header comment). Returns the number of pieces.
+template <class Box, class F>
+std::size_t carve(Box& box, const Box& inner, double min_width, F&& emit) {
+    using I = typename Box::interval_type;
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::size_t pieces = 0;
+    for (std::size_t i = 0; i < box.size(); ++i) {
+        const double lo = lower(box[i]), hi = upper(box[i]);
+        const double cut_lo = std::nextafter(lower(inner[i]), -inf), cut_hi = std::nextafter(upper(inner[i]), inf);
+        if (cut_lo > lo && cut_lo - lo >= min_width) {
+            Box piece = box;
+            piece[i] = I(lo, cut_lo);
+            emit(std::move(piece));
+            box[i] = I(cut_lo, upper(box[i]));
+            ++pieces;
+        }
+        if (cut_hi < hi && hi - cut_hi >= min_width) {
+            Box piece = box;
+            piece[i] = I(cut_hi, hi);
+            emit(std::move(piece));
+            box[i] = I(lower(box[i]), cut_hi);
+            ++pieces;
+        }
+    }
+    return pieces;
+}
+
+/// A box inside `b` that `ok` certifies, anchored at a corner of `b` (nothing when no corner
+/// point is certified): near a smooth boundary the valid part of a small box is close to the
+/// side of a plane, and the largest box inside that is anchored at the corner deepest inside.
+/// The corner is the certified one with the most certified neighbours; from it the box grows
+/// toward the opposite corner, all three widths in proportion (bisection, `steps` times), then
+/// each on its own. `ok` is the only proof: every box returned passed it.
+template <class Box, class Ok>
+std::optional<Box> corner_box(const Box& b, Ok&& ok, int steps) {
+    using I = typename Box::interval_type;
+    const auto corner = [&](std::size_t k, std::size_t d) { return (k >> d) & 1 ? upper(b[d]) : lower(b[d]); };
+    std::array<bool, 8> good{};
+    for (std::size_t k = 0; k < 8; ++k) {
+        Box p;
+        for (std::size_t d = 0; d < 3; ++d) p[d] = I(corner(k, d));
+        good[k] = ok(p);
+    }
+    std::size_t best = 8;
+    int best_neighbours = -1;
+    for (std::size_t k = 0; k < 8; ++k) {
+        if (!good[k]) continue;
+        int n = 0;
+        for (std::size_t d = 0; d < 3; ++d) n += good[k ^ (std::size_t{1} << d)];
+        if (n > best_neighbours) best = k, best_neighbours = n;
+    }
+    if (best == 8) return std::nullopt;
+    // The box from the corner reaching t_d of the way across dimension d.
+    const auto reach = [&](const std::array<double, 3>& t) {
+        Box q;
+        for (std::size_t d = 0; d < 3; ++d) {
+            const double from = corner(best, d), to = corner(best ^ 7, d), end = from + t[d] * (to - from);
+            q[d] = intersect(from <= end ? I(from, end) : I(end, from), b[d]);  // rounding may overshoot b
+        }
+        return q;
+    };
+    double lo = 0.0, hi = 1.0;
+    for (int i = 0; i < steps; ++i) {
+        const double m = (lo + hi) / 2;
+        (ok(reach({m, m, m})) ? lo : hi) = m;
+    }
+    if (lo == 0.0) return std::nullopt;
+    std::array<double, 3> t{lo, lo, lo};
+    for (std::size_t d = 0; d < 3; ++d) {
+        double up = 1.0;
+        for (int i = 0; i < (steps + 1) / 2; ++i) {
+            std::array<double, 3> c = t;
+            c[d] = (t[d] + up) / 2;
+            if (ok(reach(c))) t = c;
+            else up = c[d];
+        }
+    }
+    return reach(t);
+}
+
+/// A half-space of occlusion_half_space prepared for repeated use over intervals: the points
+/// p with n·p ≤ rhs, n = sign·(b − a) × (c − a) and rhs = n·a enclosing the exact values.
+template <Interval I>
+struct prepared_half_space {
+    std::array<I, 3> n;
+    I rhs;
+};
+
+/// A shadow (occlusion_shadow) prepared for repeated contractions.
+template <Interval I>
+struct prepared_shadow {
+    std::array<prepared_half_space<I>, occlusion_shadow::max_planes> planes{};
+    std::size_t count = 0;
+};
+
+/// The shadows of the triangles that may block a sight line from some box, shared by the boxes
+/// inside it (any triangle that may block from a sub-box may block from the box). They point
+/// into a shadow_cache.
+template <Interval I>
+using shadow_list = std::vector<const prepared_shadow<I>*>;
+
+
+/// Call under a rounding_guard<I>.
+template <Interval I>
+prepared_shadow<I> prepare(const occlusion_shadow& s) {
+    prepared_shadow<I> out;
+    out.count = s.count;
+    for (std::size_t p = 0; p < s.count; ++p) {
+        const auto& [a, b, c] = s.planes[p].points;
+        std::array<I, 3> u, v;
+        for (int k = 0; k < 3; ++k) u[k] = I(b[k]) - I(a[k]), v[k] = I(c[k]) - I(a[k]);
+        auto& h = out.planes[p];
+        h.n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        if (s.planes[p].sign < 0)
+            for (auto& x : h.n) x = -x;
+        h.rhs = h.n[0] * I(a[0]) + h.n[1] * I(a[1]) + h.n[2] * I(a[2]);
+    }
+    return out;
+}
+
+/// Prepared shadows by scene triangle, for one facet: a triangle's shadow depends on the facet
+/// and the triangle alone, so each is built once per solve. Node-based: pointers stay valid.
+template <Interval I>
+class shadow_cache {
+public:
+    /// The shadow of `triangle`, from `make()` (an occlusion_shadow) the first time.
+    template <class Make>
+    const prepared_shadow<I>& get(std::size_t triangle, Make&& make) {
+        auto it = map_.find(triangle);
+        if (it == map_.end()) {
+            const rounding_guard<I> rounding;
+            it = map_.emplace(triangle, prepare<I>(make())).first;
+        }
+        return it->second;
+    }
+
+private:
+    std::unordered_map<std::size_t, prepared_shadow<I>> map_;
+};
+
+/// Narrows `box` to a box holding all its points with n·p ≤ rhs (emptying it when there are
+/// none); every bound is rounded outward. Call under a rounding_guard<I>.
+template <Interval I>
+void contract_half_space(position_box<I>& box, const prepared_half_space<I>& h) {
+    std::array<I, 3> t{h.n[0] * box[0], h.n[1] * box[1], h.n[2] * box[2]};
+    for (int k = 0; k < 3; ++k) {
+        const I rest = h.rhs - t[(k + 1) % 3] - t[(k + 2) % 3];  // n_k p_k ≤ rest
+        const I top(upper(rest));
+        if (lower(h.n[k]) > 0.0) {
+            const double bound = upper(top / h.n[k]);
+            box[k] = bound < lower(box[k]) ? interval_traits<I>::empty() : I(lower(box[k]), std::min(upper(box[k]), bound));
+        } else if (upper(h.n[k]) < 0.0) {
+            const double bound = lower(top / h.n[k]);
+            box[k] = bound > upper(box[k]) ? interval_traits<I>::empty() : I(std::max(lower(box[k]), bound), upper(box[k]));
+        } else {
+            continue;
+        }
+        if (is_empty(box[k])) {
+            box = position_box<I>::empty();
+            return;
+        }
+        t[k] = h.n[k] * box[k];
+    }
+}
+
+/// Narrows `box` to a box holding every point of it inside the shadow; a box wholly on the safe
+/// side of one plane is emptied at once. Call under a rounding_guard<I>.
+template <Interval I>
+void contract_shadow(position_box<I>& box, const prepared_shadow<I>& s) {
+    for (std::size_t p = 0; p < s.count; ++p) {
+        const auto& h = s.planes[p];
+        if (lower(h.n[0] * box[0] + h.n[1] * box[1] + h.n[2] * box[2]) > upper(h.rhs)) {
+            box = position_box<I>::empty();
+            return;
+        }
+    }
+    for (std::size_t p = 0; p < s.count; ++p) {
+        contract_half_space(box, s.planes[p]);
+        if (is_empty(box)) return;
+    }
+}
+
+/// Narrows `box` to a box holding all its points in the closed half-space h (points p with
+/// sign·n·(p − a) ≤ 0, n = (b − a) × (c − a)), emptying it when there are none. The normal is
+/// an interval enclosure of the exact one and every bound is rounded outward, so no point of
+/// the half-space is lost. Call under a rounding_guard<I>.
+template <Interval I>
+void contract_half_space(position_box<I>& box, const occlusion_half_space& h) {
+    const auto& [a, b, c] = h.points;
+    std::array<I, 3> u, v, n, d;
+    for (int k = 0; k < 3; ++k) u[k] = I(b[k]) - I(a[k]), v[k] = I(c[k]) - I(a[k]);
+    n = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    if (h.sign < 0)
+        for (auto& x : n) x = -x;
+    for (int k = 0; k < 3; ++k) d[k] = box[k] - I(a[k]);
+    // n·d ≤ 0: for each coordinate, n_k d_k ≤ −Σ_{j≠k} n_j d_j.
+    for (int k = 0; k < 3; ++k) {
+        I rest(0.0);
+        for (int j = 0; j < 3; ++j)
+            if (j != k) rest = rest - n[j] * d[j];
+        const I top(upper(rest));
+        if (lower(n[k]) > 0.0) {  // d_k ≤ top / n_k
+            const double bound = upper(I(a[k]) + I(upper(top / n[k])));
+            box[k] = bound < lower(box[k]) ? interval_traits<I>::empty()
+                                           : I(lower(box[k]), std::min(upper(box[k]), bound));
+        } else if (upper(n[k]) < 0.0) {  // d_k ≥ top / n_k
+            const double bound = lower(I(a[k]) + I(lower(top / n[k])));
+            box[k] = bound > upper(box[k]) ? interval_traits<I>::empty()
+                                           : I(std::max(lower(box[k]), bound), upper(box[k]));
+        }
+        if (is_empty(box[k])) {
+            box = position_box<I>::empty();
+            return;
+        }
+        d[k] = box[k] - I(a[k]);
+    }
+}
+
+/// Narrows `box` to a box holding every point of it inside `shadow` (the intersection of its
+/// half-spaces; a shadow without planes keeps the whole box). Two sweeps: the planes of one
+/// shadow narrow each other once more, after which little changes.
+template <Interval I>
+void contract_shadow(position_box<I>& box, const occlusion_shadow& shadow) {
+    for (int sweep = 0; sweep < 2; ++sweep)
+        for (std::size_t p = 0; p < shadow.count; ++p) {
+            contract_half_space(box, shadow.planes[p]);
+            if (is_empty(box)) return;
+        }
+}
+
+}  // namespace certipose::detail

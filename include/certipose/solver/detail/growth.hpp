@@ -1,0 +1,276 @@
+// certipose/solver/detail/growth.hpp — widening certified 6D boxes: the installation tolerance
+// (pose_solver::grow, pose_solver::largest_box_around, solve_options::grow).
+//
+// Everything here is driven by one yes/no question, "is every pose of this 6D box valid?"
+// (pose_solver::certify), so every box it returns was certified as a whole: soundness does not
+// depend on how the search moves, only on that question. The search is greedy: a face moves
+// out by a step that doubles while the box stays certified and then halves down to the finest
+// step, face after face; a box around a pose first grows all its half-widths together, in the
+// proportions of a reference box, then each on its own. Boxes that share a whole position face
+// merge without a new proof: the hull of the two position boxes is their union, and every pose
+// of it with an orientation in both orientation boxes lies in one of the two certified boxes.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <tuple>
+#include <vector>
+
+#include "certipose/interval/operations.hpp"
+#include "certipose/pose/pose_box.hpp"
+#include "certipose/solver/task.hpp"
+
+namespace certipose {
+
+namespace detail::growth {
+
+/// The component k of a 6D pose box (x, y, z, φ, γ, β).
+template <Interval I>
+I& component(pose_box<I>& b, std::size_t k) {
+    return k < 3 ? b.position[k] : b.orientation[k - 3];
+}
+template <Interval I>
+const I& component(const pose_box<I>& b, std::size_t k) {
+    return k < 3 ? b.position[k] : b.orientation[k - 3];
+}
+
+/// Bounds no box may pass: γ ∈ [0, π]; φ and β span at most one turn.
+inline constexpr double pi_up = 3.1415926535897936;  // π rounded up
+
+/// Moves face `side` (0: lower, 1: upper) of component k out by `step`, within the limits.
+/// False when it cannot move.
+template <Interval I>
+bool moved(const pose_box<I>& b, std::size_t k, int side, double step, pose_box<I>& out) {
+    out = b;
+    const I& c = component(b, k);
+    double lo = lower(c), hi = upper(c);
+    if (side == 0) lo -= step;
+    else hi += step;
+    if (k == 4) lo = std::max(lo, 0.0), hi = std::min(hi, pi_up);
+    if ((k == 3 || k == 5) && hi - lo > 2 * pi_up) {
+        if (side == 0) lo = hi - 2 * pi_up;
+        else hi = lo + 2 * pi_up;
+    }
+    // Only outward: the clamps above, rounded, could move a face in.
+    if (side == 0 ? !(lo < lower(c)) : !(hi > upper(c))) return false;
+    lo = std::min(lo, lower(c)), hi = std::max(hi, upper(c));
+    component(out, k) = I(lo, hi);
+    return true;
+}
+
+/// Grows the certified box `b` face by face (see the header comment); `ok(box)` certifies.
+template <Interval I, class Certify>
+pose_box<I> grow(pose_box<I> b, Certify&& ok, const std::array<double, 6>& finest, std::size_t budget) {
+    std::size_t spent = 0;
+    for (int round = 0; round < 2; ++round) {
+        bool grew = false;
+        for (std::size_t k = 0; k < 6; ++k)
+            for (int side = 0; side < 2; ++side) {
+                const I& c = component(b, k);
+                double step = std::max(finest[k], (upper(c) - lower(c)) / 2);
+                bool expanding = true;
+                while (step >= finest[k] && spent < budget) {
+                    pose_box<I> cand;
+                    if (!moved(b, k, side, step, cand)) break;
+                    ++spent;
+                    if (ok(cand)) {
+                        b = cand, grew = true;
+                        if (expanding) step *= 2;
+                    } else {
+                        expanding = false;
+                        step /= 2;
+                    }
+                }
+            }
+        if (!grew || spent >= budget) break;
+    }
+    return b;
+}
+
+/// The box with centre `c` and half-widths `h` (γ kept within [0, π]).
+template <Interval I>
+pose_box<I> around(const std::array<double, 6>& c, const std::array<double, 6>& h) {
+    pose_box<I> b;
+    for (std::size_t k = 0; k < 6; ++k) {
+        double lo = c[k] - h[k], hi = c[k] + h[k];
+        if (k == 4) lo = std::max(lo, 0.0), hi = std::min(hi, pi_up);
+        component(b, k) = I(lo, hi);
+    }
+    return b;
+}
+
+/// The largest box found around pose `c` (x, y, z, φ, γ, β): half-widths t·reference for the
+/// largest t certified, then each half-width grown on its own. Nothing when `c` itself fails.
+template <Interval I, class Certify>
+std::optional<pose_box<I>> largest_around(const std::array<double, 6>& c, Certify&& ok,
+                                          const std::array<double, 6>& reference,
+                                          const std::array<double, 6>& finest, std::size_t budget) {
+    std::array<double, 6> h{};
+    if (!ok(around<I>(c, h))) return std::nullopt;
+    std::size_t spent = 1;
+    // 1. All half-widths together: double t while certified, then bisect.
+    double t_ok = 0.0, t = 1.0 / 64;
+    const auto scaled = [&](double s) {
+        std::array<double, 6> r{};
+        for (std::size_t k = 0; k < 6; ++k) r[k] = s * reference[k];
+        return r;
+    };
+    double t_bad = -1.0;
+    while (spent < budget && t < 64) {
+        ++spent;
+        if (ok(around<I>(c, scaled(t)))) t_ok = t, t *= 2;
+        else { t_bad = t; break; }
+    }
+    if (t_bad > 0)
+        for (int i = 0; i < 12 && spent < budget; ++i, ++spent) {
+            const double m = (t_ok + t_bad) / 2;
+            (ok(around<I>(c, scaled(m))) ? t_ok : t_bad) = m;
+        }
+    h = scaled(t_ok);
+    // 2. Each half-width on its own, in turn.
+    for (int round = 0; round < 2; ++round)
+        for (std::size_t k = 0; k < 6; ++k) {
+            double step = std::max(finest[k], h[k]);
+            bool expanding = true;
+            while (step >= finest[k] && spent < budget) {
+                std::array<double, 6> cand = h;
+                cand[k] += step;
+                if ((k == 3 || k == 5) && cand[k] > pi_up) break;
+                ++spent;
+                if (ok(around<I>(c, cand))) {
+                    h = cand;
+                    if (expanding) step *= 2;
+                } else {
+                    expanding = false;
+                    step /= 2;
+                }
+            }
+        }
+    return around<I>(c, h);
+}
+
+/// Merges VALID boxes that share a whole position face (see the header comment): the merged box
+/// takes the hull of the orientations when `fov_ok(position, orientation)` certifies it, else
+/// their intersection (certified without a proof), and is skipped when that is empty. Repeats
+/// until nothing merges. Returns the number of merges.
+template <Interval I, class FovOk>
+std::size_t merge_touching(std::vector<pose_box<I>>& boxes, FovOk&& fov_ok) {
+    std::size_t merges = 0;
+    for (bool again = true; again;) {
+        again = false;
+        // Key: the dimension, the touching coordinate and the other two position intervals.
+        using key = std::tuple<std::size_t, double, double, double, double, double>;
+        std::map<key, std::size_t> lower_face;  // box whose lower face in dimension d is at the key
+        const auto make_key = [](const position_box<I>& p, std::size_t d, double at) {
+            const std::size_t a = (d + 1) % 3, b = (d + 2) % 3;
+            return key{d, at, lower(p[a]), upper(p[a]), lower(p[b]), upper(p[b])};
+        };
+        std::vector<bool> gone(boxes.size(), false);
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_key(boxes[i].position, d, lower(boxes[i].position[d])), i);
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (gone[i]) continue;
+            for (std::size_t d = 0; d < 3 && !gone[i]; ++d) {
+                const auto it = lower_face.find(make_key(boxes[i].position, d, upper(boxes[i].position[d])));
+                if (it == lower_face.end() || it->second == i || gone[it->second]) continue;
+                const pose_box<I>& a = boxes[i];
+                const pose_box<I>& b = boxes[it->second];
+                // Still the same faces? (an earlier merge may have changed box i)
+                const std::size_t u = (d + 1) % 3, v = (d + 2) % 3;
+                if (!(upper(a.position[d]) == lower(b.position[d]) && lower(a.position[u]) == lower(b.position[u]) &&
+                      upper(a.position[u]) == upper(b.position[u]) && lower(a.position[v]) == lower(b.position[v]) &&
+                      upper(a.position[v]) == upper(b.position[v])))
+                    continue;
+                pose_box<I> m{hull(a.position, b.position), hull(a.orientation, b.orientation)};
+                if (!fov_ok(m.position, m.orientation)) {
+                    m.orientation = intersect(a.orientation, b.orientation);
+                    if (is_empty(m.orientation)) continue;
+                }
+                boxes[i] = m;
+                gone[it->second] = true;
+                ++merges;
+                again = true;
+            }
+        }
+        std::size_t w = 0;
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            if (!gone[i]) boxes[w++] = boxes[i];
+        boxes.resize(w);
+    }
+    return merges;
+}
+
+/// Merges position boxes that share a whole face, as long as the merged box is at most
+/// `max_width` wide in every dimension; repeats until nothing merges. The union of two boxes that
+/// share a whole face is their hull, so a property that holds at every point of both holds on
+/// the merged box (position-stage VALID boxes: constraints 1–4 and 6). Returns the merges.
+template <Interval I>
+std::size_t merge_touching_positions(std::vector<position_box<I>>& boxes, double max_width) {
+    using key = std::tuple<std::size_t, double, double, double, double, double>;
+    const auto make_key = [](const position_box<I>& p, std::size_t d, double at) {
+        const std::size_t a = (d + 1) % 3, b = (d + 2) % 3;
+        return key{d, at, lower(p[a]), upper(p[a]), lower(p[b]), upper(p[b])};
+    };
+    std::size_t merges = 0;
+    // A few rounds: each can double a box, and more rounds cost more than they merge.
+    for (int round = 0; round < 4; ++round) {
+        bool again = false;
+        std::map<key, std::size_t> lower_face;
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_key(boxes[i], d, lower(boxes[i][d])), i);
+        std::vector<bool> gone(boxes.size(), false), changed(boxes.size(), false);
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            if (gone[i] || changed[i]) continue;
+            for (std::size_t d = 0; d < 3; ++d) {
+                const auto it = lower_face.find(make_key(boxes[i], d, upper(boxes[i][d])));
+                if (it == lower_face.end()) continue;
+                const std::size_t j = it->second;
+                if (j == i || gone[j] || changed[j]) continue;
+                if (upper(boxes[j][d]) - lower(boxes[i][d]) > max_width) continue;
+                boxes[i] = hull(boxes[i], boxes[j]);
+                gone[j] = true, changed[i] = true;
+                ++merges, again = true;
+                break;
+            }
+        }
+        std::size_t w = 0;
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            if (!gone[i]) boxes[w++] = boxes[i];
+        boxes.resize(w);
+        if (!again) break;
+    }
+    return merges;
+}
+
+/// Drops boxes contained in another box of the list (keeps one of equal boxes).
+template <Interval I>
+void drop_contained(std::vector<pose_box<I>>& boxes) {
+    const auto inside = [](const pose_box<I>& a, const pose_box<I>& b) {
+        for (std::size_t k = 0; k < 6; ++k) {
+            const I& x = component(a, k);
+            const I& y = component(b, k);
+            if (!(lower(y) <= lower(x) && upper(x) <= upper(y))) return false;
+        }
+        return true;
+    };
+    // Largest first: a box can only be inside one at least as large.
+    std::sort(boxes.begin(), boxes.end(), [](const pose_box<I>& a, const pose_box<I>& b) { return volume(a) > volume(b); });
+    std::vector<pose_box<I>> kept;
+    for (const auto& b : boxes) {
+        bool contained = false;
+        for (const auto& k : kept)
+            if (inside(b, k)) { contained = true; break; }
+        if (!contained) kept.push_back(b);
+    }
+    boxes = std::move(kept);
+}
+
+}  // namespace detail::growth
+
+}  // namespace certipose
