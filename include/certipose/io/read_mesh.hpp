@@ -147,10 +147,12 @@ inline std::string screen_off(const std::filesystem::path& path) {
     std::string line;
     std::size_t line_no = 0;
     std::vector<std::string> words;
+    bool commented = false;  // the last line read had a comment
     const auto next_line = [&] {
         while (std::getline(in, line)) {
             ++line_no;
-            if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+            commented = false;
+            if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash), commented = true;
             words.clear();
             std::istringstream split(line);
             for (std::string w; split >> w;) words.push_back(w);
@@ -160,6 +162,22 @@ inline std::string screen_off(const std::filesystem::path& path) {
     };
     const std::string at = path.string() + " line ";
     const auto where = [&] { return at + std::to_string(line_no) + ": "; };
+    // CGAL ends a line (and a comment) at a lone carriage return too, and then may read a
+    // "BINARY" keyword this screen never saw: control characters have no place in ASCII OFF.
+    {
+        std::ifstream raw(path, std::ios::binary);
+        std::size_t n = 1;
+        char prev = 0;
+        for (char ch; raw.get(ch); prev = ch) {
+            const auto u = static_cast<unsigned char>(ch);
+            if (prev == '\r' && ch != '\n')
+                return at + std::to_string(n) + ": a carriage return not followed by a line feed";
+            if (ch == '\n') ++n;
+            if ((u < 0x20 && ch != '\n' && ch != '\r' && ch != '\t') || u == 0x7f)
+                return at + std::to_string(n) + ": control character " + std::to_string(static_cast<int>(u)) +
+                       " (an ASCII OFF file has none)";
+        }
+    }
     const auto number = [](const std::string& w, double& v) {
         const auto [end, e] = std::from_chars(w.data(), w.data() + w.size(), v);
         return e == std::errc{} && end == w.data() + w.size() && std::isfinite(v);
@@ -171,6 +189,8 @@ inline std::string screen_off(const std::filesystem::path& path) {
     };
     if (!next_line()) return path.string() + ": empty (no OFF header)";
     const std::string head = words[0];
+    // CGAL reads a header keyword through a '#' ("OFF#BINARY" is binary OFF to it).
+    if (commented) return where() + "a comment on the header line";
     if (head != "OFF" && head != "COFF")
         return where() + "header '" + head + "' is not supported (plain OFF or COFF, ASCII)";
     const bool colours = head == "COFF";
@@ -178,13 +198,15 @@ inline std::string screen_off(const std::filesystem::path& path) {
     if (words.size() == 1) {
         if (!next_line()) return path.string() + ": ends after the header";
         first = 0;
+    } else if (commented) {
+        return where() + "a comment on the header line";
     }
     std::uint64_t nv = 0, nf = 0, ne = 0;
     if (words.size() < first + 2 || words.size() > first + 3 || !count(words[first], nv) || !count(words[first + 1], nf) ||
         (words.size() == first + 3 && !count(words[first + 2], ne)))
         return where() + "expected the vertex, face and edge counts";
     // A vertex takes at least 6 bytes ("0 0 0\n"), a face 8: more than the file holds is a lie.
-    if (nv > bytes / 6 + 1 || nf > bytes / 8 + 1)
+    if (nv > bytes / 6 + 1 || nf > bytes / 8 + 1 || ne > bytes)
         return where() + "counts " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                " faces do not fit a file of " + std::to_string(bytes) + " bytes";
     for (std::uint64_t v = 0; v < nv; ++v) {
