@@ -2,6 +2,9 @@
 // ε_p = 0.1 m, with each occlusion policy.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
+#include <optional>
+
 #include <certipose/camera.hpp>
 #include <certipose/constraints/paper_position_constraints.hpp>
 #include <certipose/geometry/sample_part.hpp>
@@ -26,26 +29,49 @@ certipose::position_problem problem() {
     return {part().mesh.facet(part().facet_of_interest), camera.distance_range(), {.min_view_angle = 0.35}};
 }
 
+// The paper's paving (no inner contraction, occlusion cuts or corner boxes) and the default.
+const certipose::position_stage_options paper{.inner_contraction = false, .occlusion_cuts = false,
+                                              .leaf_corner_boxes = false};
+const certipose::position_stage_options inner_only{.inner_contraction = true, .occlusion_cuts = false,
+                                                   .leaf_corner_boxes = false};
+const certipose::position_stage_options carving{};
+
 template <class Occlusion>
-void run(benchmark::State& state) {
+void run(benchmark::State& state, const certipose::position_stage_options& stage,
+         std::optional<std::chrono::milliseconds> refine = {}) {
     const auto pb = problem();
     const Occlusion occlusion(part().mesh);
     std::size_t valid = 0, boundary = 0, tests = 0;
+    double volume = 0;
     for (auto _ : state) {
+        std::optional<certipose::position_refinement> r2;
+        if (refine) r2 = certipose::position_refinement{0.1 / 16, std::chrono::steady_clock::now() + *refine};
         auto r = certipose::pave_positions<I, certipose::paper_position_constraints<I>>(
-            pb, part().facet_of_interest, occlusion, {}, 0.1);
+            pb, part().facet_of_interest, occlusion, {}, 0.1, {}, {}, stage, r2);
         valid = r.boxes.valid.size(), boundary = r.boxes.boundary.size(), tests = r.counters.occlusion_tests;
+        volume = r.boxes.stats.valid_volume;
         benchmark::DoNotOptimize(r);
     }
     state.counters["valid"] = static_cast<double>(valid);
     state.counters["boundary"] = static_cast<double>(boundary);
     state.counters["occlusion_tests"] = static_cast<double>(tests);
+    state.counters["valid_m3"] = volume;
 }
 
-void BM_position_paving_sample_part(benchmark::State& state) { run<certipose::aabb_occlusion>(state); }
-void BM_position_paving_sample_part_no_occlusion(benchmark::State& state) { run<certipose::no_occlusion>(state); }
+void BM_position_paving_sample_part(benchmark::State& state) { run<certipose::aabb_occlusion>(state, carving); }
+void BM_position_paving_sample_part_paper(benchmark::State& state) { run<certipose::aabb_occlusion>(state, paper); }
+void BM_position_paving_sample_part_inner_contraction_only(benchmark::State& state) {
+    run<certipose::aabb_occlusion>(state, inner_only);
+}
+void BM_position_paving_sample_part_refined_200ms(benchmark::State& state) {
+    run<certipose::aabb_occlusion>(state, carving, std::chrono::milliseconds(200));
+}
+void BM_position_paving_sample_part_no_occlusion(benchmark::State& state) { run<certipose::no_occlusion>(state, carving); }
 
 }  // namespace
 
 BENCHMARK(BM_position_paving_sample_part)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_position_paving_sample_part_paper)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_position_paving_sample_part_inner_contraction_only)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_position_paving_sample_part_refined_200ms)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_position_paving_sample_part_no_occlusion)->Unit(benchmark::kMillisecond);
