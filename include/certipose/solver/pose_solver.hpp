@@ -305,7 +305,17 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
                 key[k] = static_cast<long long>(std::floor(mid(valid[i][k]) / options.position_eps));
             cells[key].push_back(i);
         }
+        // Largest position volume first, in groups and one by one: a run that a deadline stops
+        // in this stage (refinement hands it many small boxes) has certified the most it could.
+        std::vector<std::pair<double, const std::vector<std::size_t>*>> by_volume;
         for (const auto& [key, members] : cells) {
+            double v = 0;
+            for (std::size_t i : members) v += volume(valid[i]);
+            by_volume.emplace_back(v, &members);
+        }
+        std::stable_sort(by_volume.begin(), by_volume.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        for (const auto& [cell_volume, members_ptr] : by_volume) {
+            const std::vector<std::size_t>& members = *members_ptr;
             bool grouped = false;
             if (members.size() > 1 && past_paper && !halted && !options.stop.stop_requested() &&
                 !(deadline && clock::now() >= *deadline)) {
@@ -329,7 +339,9 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             if (!grouped)
                 for (std::size_t i : members) todo.push_back(valid[i]);
         }
-        std::reverse(todo.begin(), todo.end());  // popped from the back: in cell order
+        // Popped from the back: largest first (ties in cell order).
+        std::reverse(todo.begin(), todo.end());
+        std::stable_sort(todo.begin(), todo.end(), [](const auto& a, const auto& b) { return volume(a) < volume(b); });
     }
     while (!todo.empty()) {
         if (!halted) {

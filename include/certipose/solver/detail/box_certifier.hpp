@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -20,6 +21,49 @@
 #include "certipose/solver/detail/carving.hpp"
 
 namespace certipose::detail {
+
+/// Constraints 1–4 over a position box by `set`: satisfied when its test says so or its
+/// complement contraction leaves nothing of the box; violated when its test says so.
+template <class Set, Interval I>
+verdict prove_position_set(Set& set, const position_box<I>& p) {
+    if (is_empty(p)) return verdict::violated;
+    const verdict v = set.test(p);
+    if (v != verdict::undecided) return v;
+    if constexpr (ComplementContractingSet<Set, I>) {
+        position_box<I> failing = p;
+        set.contract_complement(failing);
+        if (is_empty(failing)) return verdict::satisfied;
+    }
+    return verdict::undecided;
+}
+
+/// Constraint 6 over a position box: the occlusion policy says VISIBLE, or (a shadowing policy)
+/// no shadow of a triangle that may block reaches the box. `shadows` caches prepared shadows
+/// (shadow_cache); a facet's shadows are keyed by facet and triangle.
+template <class Occlusion, Interval I>
+bool prove_visible(const Occlusion& occlusion, const position_box<I>& p, std::size_t facet,
+                   shadow_cache<I>& shadows) {
+    visibility seen;
+    if constexpr (EffortAwareOcclusionPolicy<Occlusion, I>)
+        seen = occlusion.classify(p, facet, occlusion_effort::visible_only);
+    else
+        seen = occlusion.classify(p, facet);
+    if (seen == visibility::visible) return true;
+    if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
+        if (seen == visibility::partial) {
+            auto outside = [&](std::size_t triangle) {
+                const auto key = (static_cast<std::uint64_t>(facet) << 32) | static_cast<std::uint64_t>(triangle);
+                const auto& s = shadows.get(key, [&] { return occlusion.shadow(facet, triangle); });
+                const rounding_guard<I> rounding;
+                position_box<I> t = p;
+                contract_shadow(t, s);
+                return is_empty(t);  // stop at the first shadow that may reach the box
+            };
+            return occlusion.blockers(p, facet, outside);
+        }
+    }
+    return false;
+}
 
 template <class Set, class Occlusion, Interval I>
 class box_certifier {
@@ -54,37 +98,7 @@ public:
 
 private:
     bool prove_position(const position_box<I>& p) {
-        if (is_empty(p)) return false;
-        const verdict v = set_.test(p);
-        if (v == verdict::violated) return false;
-        if (v == verdict::undecided) {
-            if constexpr (ComplementContractingSet<Set, I>) {
-                position_box<I> failing = p;
-                set_.contract_complement(failing);
-                if (!is_empty(failing)) return false;
-            } else {
-                return false;
-            }
-        }
-        visibility seen;
-        if constexpr (EffortAwareOcclusionPolicy<Occlusion, I>)
-            seen = occlusion_->classify(p, facet_index_, occlusion_effort::visible_only);
-        else
-            seen = occlusion_->classify(p, facet_index_);
-        if (seen == visibility::visible) return true;
-        if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
-            if (seen == visibility::partial) {
-                auto outside = [&](std::size_t triangle) {
-                    const auto& s = cache_.get(triangle, [&] { return occlusion_->shadow(facet_index_, triangle); });
-                    const rounding_guard<I> rounding;
-                    position_box<I> t = p;
-                    contract_shadow(t, s);
-                    return is_empty(t);  // stop at the first shadow that may reach the box
-                };
-                return occlusion_->blockers(p, facet_index_, outside);
-            }
-        }
-        return false;
+        return prove_position_set(set_, p) == verdict::satisfied && prove_visible(*occlusion_, p, facet_index_, cache_);
     }
 
     Set set_;

@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -146,24 +147,25 @@ prepared_shadow<I> prepare(const occlusion_shadow& s) {
     return out;
 }
 
-/// Prepared shadows by scene triangle, for one facet: a triangle's shadow depends on the facet
-/// and the triangle alone, so each is built once per solve. Node-based: pointers stay valid.
+/// Prepared shadows by key (a scene triangle for one facet, or facet and triangle together): a
+/// triangle's shadow depends on the facet and the triangle alone, so each is built once.
+/// Node-based: pointers stay valid.
 template <Interval I>
 class shadow_cache {
 public:
-    /// The shadow of `triangle`, from `make()` (an occlusion_shadow) the first time.
+    /// The shadow under `key`, from `make()` (an occlusion_shadow) the first time.
     template <class Make>
-    const prepared_shadow<I>& get(std::size_t triangle, Make&& make) {
-        auto it = map_.find(triangle);
+    const prepared_shadow<I>& get(std::uint64_t key, Make&& make) {
+        auto it = map_.find(key);
         if (it == map_.end()) {
             const rounding_guard<I> rounding;
-            it = map_.emplace(triangle, prepare<I>(make())).first;
+            it = map_.emplace(key, prepare<I>(make())).first;
         }
         return it->second;
     }
 
 private:
-    std::unordered_map<std::size_t, prepared_shadow<I>> map_;
+    std::unordered_map<std::uint64_t, prepared_shadow<I>> map_;
 };
 
 /// Narrows `box` to a box holding all its points with n·p ≤ rhs (emptying it when there are
