@@ -513,6 +513,31 @@ result_document make_result_document(const solve_result<I>& result, const triang
 /// The result JSON of DESIGN.md §6 (keys in the documented order). Non-finite numbers are an
 /// invalid_argument naming the JSON path, except camera.d_max = +inf, written as null. Extra
 /// fields may be added to the returned object before it is written (write_json_file).
+namespace detail::json_io {
+
+/// The "camera" object of the result documents (single facet, whole part, plan).
+inline ordered_json camera_record_json(const result_document::camera_record& c) {
+    ordered_json camera;
+    camera["width_px"] = integral_or_double(c.width_px, "camera.width_px");
+    camera["height_px"] = integral_or_double(c.height_px, "camera.height_px");
+    camera["K"] = matrix(c.K, "camera.K");
+    camera["d_min"] = finite(c.d_min, "camera.d_min");
+    camera["d_max"] = finite_or_unbounded(c.d_max, "camera.d_max");
+    return camera;
+}
+
+/// The "task" object of the result documents.
+inline ordered_json task_record_json(const result_document::task_record& t) {
+    ordered_json task;
+    task["min_view_angle"] = finite(t.min_view_angle, "task.min_view_angle");
+    task["max_metres_per_pixel"] = t.max_metres_per_pixel
+                                       ? finite_or_unbounded(*t.max_metres_per_pixel, "task.max_metres_per_pixel")
+                                       : ordered_json(nullptr);
+    return task;
+}
+
+}  // namespace detail::json_io
+
 inline nlohmann::ordered_json result_to_json(const result_document& d) {
     using namespace detail::json_io;
     ordered_json facet;
@@ -520,19 +545,8 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     facet["vertices"] = matrix(d.facet.vertices, "facet.vertices");
     facet["normal"] = numbers(d.facet.normal, "facet.normal");
 
-    ordered_json camera;
-    camera["width_px"] = integral_or_double(d.camera.width_px, "camera.width_px");
-    camera["height_px"] = integral_or_double(d.camera.height_px, "camera.height_px");
-    camera["K"] = matrix(d.camera.K, "camera.K");
-    camera["d_min"] = finite(d.camera.d_min, "camera.d_min");
-    camera["d_max"] = finite_or_unbounded(d.camera.d_max, "camera.d_max");
-
-    ordered_json task;
-    task["min_view_angle"] = finite(d.task.min_view_angle, "task.min_view_angle");
-    task["max_metres_per_pixel"] =
-        d.task.max_metres_per_pixel
-            ? finite_or_unbounded(*d.task.max_metres_per_pixel, "task.max_metres_per_pixel")
-            : ordered_json(nullptr);
+    ordered_json camera = camera_record_json(d.camera);
+    ordered_json task = task_record_json(d.task);
 
     ordered_json settings;
     settings["position_eps"] = finite(d.settings.position_eps, "settings.position_eps");

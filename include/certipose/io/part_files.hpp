@@ -156,17 +156,8 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     using namespace detail::json_io;
     ordered_json j;
     j["mesh"] = {{"path", s.mesh.path}, {"faces", s.mesh.faces}, {"scale", finite(s.mesh.scale, "mesh.scale")}};
-    ordered_json camera;
-    camera["width_px"] = integral_or_double(s.camera.width_px, "camera.width_px");
-    camera["height_px"] = integral_or_double(s.camera.height_px, "camera.height_px");
-    camera["K"] = matrix(s.camera.K, "camera.K");
-    camera["d_min"] = finite(s.camera.d_min, "camera.d_min");
-    camera["d_max"] = finite_or_unbounded(s.camera.d_max, "camera.d_max");
-    j["camera"] = std::move(camera);
-    j["task"] = {{"min_view_angle", finite(s.task.min_view_angle, "task.min_view_angle")},
-                 {"max_metres_per_pixel", s.task.max_metres_per_pixel
-                                              ? finite_or_unbounded(*s.task.max_metres_per_pixel, "task.max_metres_per_pixel")
-                                              : ordered_json(nullptr)}};
+    j["camera"] = camera_record_json(s.camera);
+    j["task"] = task_record_json(s.task);
     const auto optional = [](const std::optional<double>& v, const std::string& path) {
         return v ? finite(*v, path) : ordered_json(nullptr);
     };

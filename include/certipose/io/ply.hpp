@@ -90,6 +90,26 @@ struct builder {
         colour(faces, col);
         ++num_faces;
     }
+    /// An axis-aligned box.
+    void solid(const bounds_3d& b, rgb c) {
+        std::array<Eigen::Vector3d, 8> corners;
+        for (std::size_t k = 0; k < 8; ++k)
+            for (std::size_t d = 0; d < 3; ++d) corners[k][static_cast<int>(d)] = b[d][(k >> d) & 1];
+        solid(corners, c);
+    }
+    /// The whole file: header (with `comment`), vertices, faces.
+    std::string text(const std::string& comment) const {
+        std::string t = "ply\nformat ascii 1.0\n";
+        t += "comment " + comment + "\n";
+        t += "element vertex " + std::to_string(num_vertices) + "\n";
+        t += "property double x\nproperty double y\nproperty double z\n";
+        t += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+        t += "element face " + std::to_string(num_faces) + "\n";
+        t += "property list uchar int vertex_indices\n";
+        t += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+        t += "end_header\n";
+        return t + vertices + faces;
+    }
     /// A hexahedron from 8 corners in box_triangles' order.
     void solid(const std::array<Eigen::Vector3d, 8>& corners, rgb c) {
         const std::size_t first = num_vertices;
@@ -137,10 +157,7 @@ inline std::string ply_text(const triangle_mesh& mesh, std::size_t facet_index,
         const std::string path = "boxes[" + std::to_string(i) + "]";
         detail::ply::require_finite_bounds(b.position, path + ".position");
         (b.cls == box_class::valid ? valid : boundary) += 1;
-        std::array<Eigen::Vector3d, 8> corners;
-        for (int k = 0; k < 8; ++k)
-            for (int d = 0; d < 3; ++d) corners[k][d] = b.position[d][(k >> d) & 1];
-        out.solid(corners, b.cls == box_class::valid ? opt.valid_colour : opt.boundary_colour);
+        out.solid(b.position, b.cls == box_class::valid ? opt.valid_colour : opt.boundary_colour);
     }
 
     if (opt.aim) {
@@ -171,19 +188,9 @@ inline std::string ply_text(const triangle_mesh& mesh, std::size_t facet_index,
         }
     }
 
-    std::string text = "ply\nformat ascii 1.0\n";
-    text += "comment certipose pose boxes for facet " + std::to_string(facet_index) + ": " +
-            std::to_string(valid) + " valid (green), " + std::to_string(boundary) +
-            " boundary (yellow); facet red" + (opt.part ? ", part grey" : "") +
-            (opt.aim ? ", optical axes blue" : "") + "\n";
-    text += "element vertex " + std::to_string(out.num_vertices) + "\n";
-    text += "property double x\nproperty double y\nproperty double z\n";
-    text += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-    text += "element face " + std::to_string(out.num_faces) + "\n";
-    text += "property list uchar int vertex_indices\n";
-    text += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-    text += "end_header\n";
-    return text + out.vertices + out.faces;
+    return out.text("certipose pose boxes for facet " + std::to_string(facet_index) + ": " + std::to_string(valid) +
+                    " valid (green), " + std::to_string(boundary) + " boundary (yellow); facet red" +
+                    (opt.part ? ", part grey" : "") + (opt.aim ? ", optical axes blue" : ""));
 }
 
 /// Writes ply_text(...) to `path` atomically. Throws certipose::io_error(path) on failure.
