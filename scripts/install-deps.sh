@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev
           libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev
-          libopenmpi-dev openmpi-bin clang-14 libclang-rt-14-dev)
+          libopenmpi-dev openmpi-bin libglpk-dev clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,102 @@
+// certipose/coverage/glpk_deployment.hpp — the covering problem of coverage/deployment.hpp as an
+// integer program, solved with GLPK (Debian libglpk-dev; link -lglpk): the LP relaxation's
+// optimum, rounded up, is a lower bound on the number of camera boxes any plan needs for a
+// target area, and for small instances the program itself is solved exactly.
+//
+//   minimise Σ_j x_j   over candidates j (x_j ∈ {0, 1}; in [0, 1] for the relaxation)
+//   s.t.     Σ_i a_i y_i ≥ target           (y_i ∈ [0, 1]: facet i counts as certified)
+//            y_i ≤ Σ_{j : i ∈ C(B_j)} x_j    (only if a chosen box certifies it)
+#pragma once
+
+#include <glpk.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "certipose/coverage/deployment.hpp"
+
+namespace certipose {
+
+namespace detail {
+
+struct glp_deleter {
+    void operator()(glp_prob* p) const noexcept { glp_delete_prob(p); }
+};
+
+/// The covering program for `target` (see the header comment); columns 1..n are the candidates.
+inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector<deployment_candidate>& candidates,
+                                                               const std::vector<double>& areas, double target) {
+    glp_term_out(GLP_OFF);
+    std::unique_ptr<glp_prob, glp_deleter> lp(glp_create_prob());
+    glp_set_obj_dir(lp.get(), GLP_MIN);
+    // Facets some candidate certifies get a y column and a row.
+    std::vector<int> row_of(areas.size(), 0);
+    int rows = 1;
+    for (const auto& c : candidates)
+        for (std::size_t f : c.facets)
+            if (row_of[f] == 0) row_of[f] = ++rows;
+    const int n = static_cast<int>(candidates.size()), facets = rows - 1;
+    glp_add_rows(lp.get(), rows);
+    glp_add_cols(lp.get(), n + facets);
+    glp_set_row_bnds(lp.get(), 1, GLP_LO, target, 0.0);
+    for (int r = 2; r <= rows; ++r) glp_set_row_bnds(lp.get(), r, GLP_UP, 0.0, 0.0);
+    for (int j = 1; j <= n + facets; ++j) {
+        glp_set_col_bnds(lp.get(), j, GLP_DB, 0.0, 1.0);
+        glp_set_obj_coef(lp.get(), j, j <= n ? 1.0 : 0.0);
+    }
+    std::vector<int> ia{0}, ja{0};
+    std::vector<double> ar{0.0};
+    for (std::size_t f = 0; f < areas.size(); ++f)
+        if (row_of[f]) {
+            const int y = n + row_of[f] - 1;
+            ia.push_back(1), ja.push_back(y), ar.push_back(areas[f]);   // Σ a_i y_i ≥ target
+            ia.push_back(row_of[f]), ja.push_back(y), ar.push_back(1.0);  // y_i − Σ x_j ≤ 0
+        }
+    for (int j = 0; j < n; ++j)
+        for (std::size_t f : candidates[static_cast<std::size_t>(j)].facets)
+            ia.push_back(row_of[f]), ja.push_back(j + 1), ar.push_back(-1.0);
+    glp_load_matrix(lp.get(), static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
+    return lp;
+}
+
+}  // namespace detail
+
+/// ⌈optimum of the LP relaxation⌉: no plan certifies `target` m² with fewer boxes. 0 when the
+/// LP could not be solved (then nothing is claimed).
+inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
+                                  double target) {
+    if (!(target > 0)) return 0;
+    auto lp = detail::covering_program(candidates, areas, target);
+    glp_smcp parm;
+    glp_init_smcp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.presolve = GLP_ON;
+    if (glp_simplex(lp.get(), &parm) != 0 || glp_get_status(lp.get()) != GLP_OPT) return 0;
+    // A little below the optimum before rounding up: the simplex's own tolerance must not add a box.
+    return static_cast<std::size_t>(std::ceil(glp_get_obj_val(lp.get()) - 1e-6));
+}
+
+/// The fewest candidates certifying `target` m², if GLPK proves it within `time_limit`
+/// (branch and bound); nothing otherwise.
+inline std::optional<std::vector<std::size_t>> plan_exact(const std::vector<deployment_candidate>& candidates,
+                                                          const std::vector<double>& areas, double target,
+                                                          std::chrono::milliseconds time_limit) {
+    auto lp = detail::covering_program(candidates, areas, target);
+    for (int j = 1; j <= static_cast<int>(candidates.size()); ++j) glp_set_col_kind(lp.get(), j, GLP_BV);
+    glp_iocp parm;
+    glp_init_iocp(&parm);
+    parm.msg_lev = GLP_MSG_OFF;
+    parm.presolve = GLP_ON;
+    parm.tm_lim = static_cast<int>(std::min<long long>(time_limit.count(), 1 << 30));
+    if (glp_intopt(lp.get(), &parm) != 0 || glp_mip_status(lp.get()) != GLP_OPT) return std::nullopt;
+    std::vector<std::size_t> chosen;
+    for (int j = 1; j <= static_cast<int>(candidates.size()); ++j)
+        if (glp_mip_col_val(lp.get(), j) > 0.5) chosen.push_back(static_cast<std::size_t>(j - 1));
+    return chosen;
+}
+
+}  // namespace certipose

@@ -1,0 +1,211 @@
+// certipose/coverage/inspection.hpp — which facets a 6D pose box inspects: C(B), the facets
+// certified inspected from every pose of the box, and P(B) ⊇ C(B), the facets not proven
+// impossible (DESIGN.md §7, "Coverage with guarantees").
+//
+// `facet_inspector` holds, for one solver (part, camera, task, occlusion scene), each facet's
+// position constraint set, built once. `inspect(box)` then goes through the facets:
+//  1. a cheap cull proves most of them impossible with plain geometry and wide margins: the box
+//     too far from the facet (every point farther than d_max from the nearest vertex... of the
+//     facet's bounding sphere), entirely behind the facet's plane, or the facet's centroid
+//     outside every view the orientation box allows (the optical axis lies within ρ of the axis
+//     of the box's centre orientation; the centroid is seen from the box within δ of the
+//     direction from its centre; a facet all of whose vertices are in the image has its centroid
+//     in it, which is at most the image's corner angle off the axis);
+//  2. the facet's constraint set (constraints 1–4, its test or its complement contraction) and
+//     certify_fov (constraint 5) over the whole box: violated → impossible; both certified →
+//  3. the occlusion policy (constraint 6): VISIBLE, or no shadow of a possible blocker reaching
+//     the box → the facet is in C(B); OCCLUDED → impossible; otherwise it stays in P(B) only.
+// Steps 2–3 are the proofs `pose_solver::certify` uses, so a facet in C(B) is one the
+// single-facet solver would certify for the box. The inspector owns one constraint set per
+// facet and is not shared between threads: build one per thread (it takes milliseconds).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Dense>
+
+#include "certipose/constraints/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/orientation/certify.hpp"
+#include "certipose/pose/pose_box.hpp"
+#include "certipose/solver/detail/box_certifier.hpp"
+#include "certipose/solver/detail/carving.hpp"
+#include "certipose/solver/pose_solver.hpp"
+
+namespace certipose {
+
+/// What a pose box inspects: facet indices in increasing order, and their areas (m²).
+struct facet_coverage {
+    std::vector<std::size_t> certified;  ///< C(B): every constraint proven for every pose
+    std::vector<std::size_t> possible;   ///< P(B) ⊇ C(B): not proven impossible
+    double certified_area = 0, possible_area = 0;
+};
+
+/// Counters of an inspector (what each step decided, summed over calls).
+struct inspection_stats {
+    std::size_t boxes = 0, culled = 0, by_constraints = 0, by_field_of_view = 0, occlusion_tests = 0;
+};
+
+template <class Policies = default_policies>
+class facet_inspector {
+public:
+    using solver_type = pose_solver<Policies>;
+    using interval_type = typename solver_type::interval_type;
+    using constraint_set_type = typename solver_type::constraint_set_type;
+
+    /// Builds each facet's constraint set for `solver`'s camera range and task (milliseconds for
+    /// a few thousand facets). `solver` must outlive the inspector.
+    explicit facet_inspector(const solver_type& solver) : solver_(&solver), frustum_(solver.camera()) {
+        const triangle_mesh& m = solver.part();
+        sets_.reserve(m.num_faces());
+        areas_.reserve(m.num_faces());
+        for (std::size_t f = 0; f < m.num_faces(); ++f) {
+            const facet& fa = m.facet(f);
+            sets_.push_back(make_constraint_set<constraint_set_type>(position_problem{fa, solver.range(), solver.task()},
+                                                                     solver.constraints()));
+            areas_.push_back(0.5 * (fa.v[1] - fa.v[0]).cross(fa.v[2] - fa.v[0]).norm());
+            double r = 0;
+            for (const auto& v : fa.v) r = std::max(r, (v - fa.centroid).norm());
+            radius_.push_back(r);
+        }
+        // The largest angle between the optical axis and a ray through the image (a corner).
+        const Eigen::Matrix3d Kinv = solver.camera().intrinsics().inverse();
+        for (const double u : {0.0, solver.camera().width_px()})
+            for (const double v : {0.0, solver.camera().height_px()}) {
+                const Eigen::Vector3d ray = Kinv * Eigen::Vector3d(u, v, 1.0);
+                corner_angle_ = std::max(corner_angle_, std::atan2(ray.head<2>().norm(), ray.z()));
+            }
+    }
+
+    /// C(B) and P(B) for the 6D box (see the header comment). Throws invalid_argument("box") for
+    /// an empty or unbounded box.
+    facet_coverage inspect(const pose_box<interval_type>& box) {
+        for (std::size_t k = 0; k < 3; ++k)
+            if (is_empty(box.position[k]) || is_empty(box.orientation[k]) || !std::isfinite(lower(box.position[k])) ||
+                !std::isfinite(upper(box.position[k])) || !std::isfinite(lower(box.orientation[k])) ||
+                !std::isfinite(upper(box.orientation[k])))
+                throw invalid_argument("box", "facet_inspector: the pose box must be finite and non-empty");
+        ++stats_.boxes;
+        facet_coverage out;
+        const triangle_mesh& m = solver_->part();
+        const distance_range range = solver_->range();
+        // The box as a ball (centre, radius) and its orientations as a cone of axes (a0, ρ).
+        Eigen::Vector3d c, half;
+        for (int k = 0; k < 3; ++k) {
+            const auto& x = box.position[static_cast<std::size_t>(k)];
+            c[k] = lower(x) + (upper(x) - lower(x)) / 2;
+            half[k] = (upper(x) - lower(x)) / 2;
+        }
+        const double r = half.norm() * (1 + 1e-12) + 1e-12;
+        const double phi = mid(box.orientation[0]), gamma = mid(box.orientation[1]);
+        const Eigen::Vector3d a0(std::sin(phi) * std::sin(gamma), -std::cos(phi) * std::sin(gamma), std::cos(gamma));
+        // |d axis| ≤ |dγ| + sin γ |dφ| ≤ the half-widths in γ and φ (ZXZ: β only rolls).
+        const double rho = (upper(box.orientation[1]) - lower(box.orientation[1])) / 2 +
+                           (upper(box.orientation[0]) - lower(box.orientation[0])) / 2;
+        const double slack = 1e-6;  // radians and relative: far beyond double rounding
+        for (std::size_t f = 0; f < m.num_faces(); ++f) {
+            const facet& fa = m.facet(f);
+            // 1. Cull.
+            const Eigen::Vector3d d = fa.centroid - c;
+            const double dist = d.norm();
+            const bool too_far = dist - r - radius_[f] > range.max * (1 + slack);
+            const bool too_near = dist + r + radius_[f] < range.min * (1 - slack);
+            const bool behind = fa.normal.dot(c - fa.v[0]) < -r * (1 + slack);
+            bool out_of_view = false;
+            if (dist > r * (1 + slack)) {
+                const double angle = std::acos(std::clamp(a0.dot(d) / dist, -1.0, 1.0));
+                out_of_view = angle > rho + std::asin(std::min(1.0, r / dist)) + corner_angle_ + slack;
+            }
+            if (too_far || too_near || behind || out_of_view) {
+                ++stats_.culled;
+                continue;
+            }
+            switch (decide(box, f)) {
+                case decision::certified:
+                    out.certified.push_back(f);
+                    out.certified_area += areas_[f];
+                    [[fallthrough]];
+                case decision::possible:
+                    out.possible.push_back(f);
+                    out.possible_area += areas_[f];
+                    break;
+                case decision::impossible: break;
+            }
+        }
+        return out;
+    }
+
+    /// Whether facet `f` is certified inspected from every pose of `box` (steps 2–3; no cull,
+    /// which only ever rejects). Throws out_of_range for a facet beyond the part.
+    bool certifies(const pose_box<interval_type>& box, std::size_t f) {
+        if (f >= sets_.size()) throw out_of_range("facet", f, sets_.size());
+        return !is_empty(box) && decide(box, f) == decision::certified;
+    }
+
+    /// The largest box found around the exact pose (x, y, z, φ, γ, β) from every pose of which
+    /// each facet of `facets` stays certified (half-widths grown together in the proportions of
+    /// `eps` = (ε_p, ε_o), then each on its own; solver/detail/growth.hpp). Nothing when the pose
+    /// itself does not certify them all. Throws invalid_argument for a non-finite pose.
+    std::optional<pose_box<interval_type>> largest_box_keeping(const std::array<double, 6>& pose,
+                                                               const std::vector<std::size_t>& facets,
+                                                               const growth_options& options = {},
+                                                               std::array<double, 2> eps = {0.064, 0.32}) {
+        options.validate();
+        for (double v : pose)
+            if (!std::isfinite(v))
+                throw invalid_argument("pose", "facet_inspector: the pose must be finite, got " + detail::format_double(v));
+        for (std::size_t f : facets)
+            if (f >= sets_.size()) throw out_of_range("facet", f, sets_.size());
+        const auto ok = [&](const pose_box<interval_type>& b) {
+            for (std::size_t f : facets)
+                if (!certifies(b, f)) return false;
+            return true;
+        };
+        const std::array<double, 6> reference{eps[0], eps[0], eps[0], eps[1], eps[1], eps[1]};
+        return detail::growth::largest_around<interval_type>(pose, ok, reference, detail::finest_steps(options, eps[0], eps[1]),
+                                                             options.max_certifications);
+    }
+
+    /// Facet areas (m²), by facet index.
+    const std::vector<double>& areas() const noexcept { return areas_; }
+    const solver_type& solver() const noexcept { return *solver_; }
+    const inspection_stats& stats() const noexcept { return stats_; }
+
+private:
+    enum class decision { impossible, possible, certified };
+
+    // Steps 2–3 of the header comment for one facet.
+    decision decide(const pose_box<interval_type>& box, std::size_t f) {
+        const verdict v = detail::prove_position_set(sets_[f], box.position);
+        if (v == verdict::violated) {
+            ++stats_.by_constraints;
+            return decision::impossible;
+        }
+        const verdict fov = certify_fov(box.position, box.orientation, solver_->part().facet(f), frustum_);
+        if (fov == verdict::violated) {
+            ++stats_.by_field_of_view;
+            return decision::impossible;
+        }
+        if (v != verdict::satisfied || fov != verdict::satisfied) return decision::possible;
+        ++stats_.occlusion_tests;
+        return detail::prove_visible(solver_->occlusion(), box.position, f, cache_) ? decision::certified
+                                                                                    : decision::possible;
+    }
+
+    const solver_type* solver_;
+    fov_frustum<interval_type> frustum_;
+    std::vector<constraint_set_type> sets_;
+    std::vector<double> areas_, radius_;
+    double corner_angle_ = 0;
+    detail::shadow_cache<interval_type> cache_;
+    inspection_stats stats_;
+};
+
+}  // namespace certipose
