@@ -86,20 +86,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
-    const auto fail = [&](const std::string& message) {
-        if (this_rank == 0) std::cerr << "certipose-part: error: " << one_line(message) << " (run with --help for usage)\n";
-        code = exit_usage;
-        return std::nullopt;
-    };
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::CallForHelp&) {
-        if (this_rank == 0) std::cout << app.help();
-        code = exit_ok;
-        return std::nullopt;
-    } catch (const CLI::ParseError& e) {
-        return fail(e.what());
-    }
+    if (!parse_command_line(app, argc, argv, "certipose-part", code, this_rank == 0)) return std::nullopt;
     try {
         arguments a;
         a.mesh = mesh;
@@ -127,7 +114,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!fs::is_directory(parent, ec)) throw usage_error("--out: directory does not exist: " + parent.string());
         return a;
     } catch (const usage_error& e) {
-        return fail(e.what());
+        usage_failure("certipose-part", e.what(), code, this_rank == 0);
+        return std::nullopt;
     }
 }
 

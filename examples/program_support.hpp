@@ -27,6 +27,11 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+#include <certipose/error.hpp>
+
+#include <iostream>
+
 namespace certipose_program {
 
 namespace detail {
@@ -138,6 +143,48 @@ inline std::string one_line(std::string s) {
     return s;
 }
 
+
+/// The exit code of a run a signal stopped, after one line saying so (for programs that then
+/// write nothing).
+inline int report_interrupted(const char* program, const interruption& signals) {
+    std::cerr << program << ": interrupted by " << interruption::name(signals.signal()) << "; nothing written\n";
+    return signals.exit_code();
+}
+
+/// Runs `body` (returning an exit code); an error it throws becomes one line "<program>: ..." on
+/// stderr and exit code 1.
+template <class Body>
+int report_errors(const char* program, Body&& body) {
+    try {
+        return body();
+    } catch (const std::exception& e) {
+        const bool ours = dynamic_cast<const certipose::error*>(&e) != nullptr;
+        std::cerr << program << ": " << (ours ? "" : "unexpected error: ") << one_line(e.what()) << "\n";
+        return exit_failure;
+    }
+}
+
+/// A bad command line: one line "<program>: error: <message> (run with --help for usage)" on
+/// stderr (when `print`; MPI ranks other than 0 stay silent) and exit code 2.
+inline void usage_failure(const char* program, const std::string& message, int& code, bool print = true) {
+    if (print) std::cerr << program << ": error: " << one_line(message) << " (run with --help for usage)\n";
+    code = exit_usage;
+}
+
+/// `app.parse` with the programs' conventions: --help prints the usage (exit 0), a parse error is
+/// one line (exit 2). False: the program ends now with `code`.
+inline bool parse_command_line(CLI::App& app, int argc, char** argv, const char* program, int& code, bool print = true) {
+    try {
+        app.parse(argc, argv);
+        return true;
+    } catch (const CLI::CallForHelp&) {
+        if (print) std::cout << app.help();
+        code = exit_ok;
+    } catch (const CLI::ParseError& e) {
+        usage_failure(program, e.what(), code, print);
+    }
+    return false;
+}
 
 /// True when progress should be drawn: stderr is a terminal and the user did not ask for quiet.
 inline bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }

@@ -6,7 +6,9 @@
 #include <certipose/interval/cgal_interval.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/io/ply.hpp>
+#include <certipose/coverage/deployment.hpp>
 #include <certipose/io/output_files.hpp>
+#include <certipose/io/plan_files.hpp>
 #include <certipose/io/read_mesh.hpp>
 #include <certipose/io/write_file.hpp>
 #include <certipose/occlusion/cgal_aabb_occlusion.hpp>
@@ -186,6 +188,15 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         {"bad position threshold", [&] { certipose::solve_options{.position_eps = 0.0}.validate(); }},
         {"bad orientation threshold", [&] { certipose::solve_options{.orientation_eps = std::nan("")}.validate(); }},
         {"output directory missing", [&] { certipose::write_file_atomically(dir / "no" / "result.json", "{}"); }},
+        {"deployment coverage out of range", [&] {
+             certipose::deployment_options o;
+             o.coverage = 1.5;
+             certipose::plan_greedy({}, {}, o);
+         }},
+        {"poses file with no pose", [&] { certipose::read_poses(file("poses.json", R"({"poses": []})")); }},
+        {"pose box upside down", [&] {
+             certipose::read_poses(file("box.json", R"({"poses": [{"position": [[0, 1], [2, 1], [0, 1]], "orientation": [[0, 1], [0, 1], [0, 1]]}]})"));
+         }},
         {"output is an input", [&] {
              certipose::refuse_overwriting_inputs({{"--mesh", file("part.off", tetra_off)}}, {{"--out", dir / "." / "part.off"}});
          }},

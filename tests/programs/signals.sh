@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # SIGINT and SIGTERM sent to the programs while they run (CTest: program.signals).
-#   signals.sh SOLVE PART MESH CAMERA WORK_DIR
+#   signals.sh SOLVE PART MESH CAMERA WORK_DIR [PLAN]
 # certipose-solve must stop, write nothing (no result, no PLY, no temporary) and exit 130/143;
 # certipose-part must stop, leave a readable summary.json marked interrupted with the facets it
-# finished, boxes.jsonl, no temporary, and exit 130/143.
+# finished, boxes.jsonl, no temporary, and exit 130/143; certipose-plan (one-shot mode, given as
+# PLAN) must stop, write neither PLAN.json nor its PLY, say so in one line and exit 130/143.
 set -uo pipefail
-solve=$1 part=$2 mesh=$3 camera=$4 work=$5
+solve=$1 part=$2 mesh=$3 camera=$4 work=$5 plan=${6:-}
 rm -rf "$work" && mkdir -p "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
@@ -49,5 +50,17 @@ for sig in INT TERM; do
   [ "$count" -gt 0 ] && [ "$count" -lt "$faces" ] || fail "certipose-part on SIG$sig finished $count of $faces facets"
   in_boxes=$(grep -o '"facet": *[0-9]*' "$out/boxes.jsonl" | grep -o '[0-9]*$' | sort -n | uniq)
   [ -z "$(comm -13 <(echo "$finished") <(echo "$in_boxes"))" ] || fail "boxes.jsonl has facets the summary does not list"
+
+  if [ -n "$plan" ]; then
+    dir=$work/plan-$sig && mkdir -p "$dir"
+    # One shot: the whole part is solved first (minutes), stopped after 3 s.
+    signal_after $sig 3 "$plan" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 \
+        --out "$dir/plan.json" --ply "$dir/plan.ply" --quiet 2>"$dir/stderr"
+    rc=$?
+    [ $rc -eq "$expected" ] || fail "certipose-plan on SIG$sig exited $rc, expected $expected: $(cat "$dir/stderr")"
+    [ -z "$(ls -A "$dir" | grep -v '^stderr$')" ] || fail "certipose-plan on SIG$sig left files: $(ls -A "$dir")"
+    grep -q "interrupted by SIG$sig" "$dir/stderr" || fail "certipose-plan on SIG$sig said: $(cat "$dir/stderr")"
+    [ "$(wc -l < "$dir/stderr")" -eq 1 ] || fail "certipose-plan on SIG$sig printed more than one line: $(cat "$dir/stderr")"
+  fi
 done
-echo "signals: certipose-solve and certipose-part stop cleanly on SIGINT and SIGTERM"
+echo "signals: the programs stop cleanly on SIGINT and SIGTERM"

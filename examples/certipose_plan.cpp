@@ -1,0 +1,364 @@
+// certipose-plan — the fewest camera boxes that certify a part (DESIGN.md §6, "Deployment plan").
+//
+//   certipose-plan --mesh PART --camera CAMERA.json [--scale S]
+//                  (--part-results DIR | --position-eps E --orientation-eps O [--facets LIST])
+//                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
+//                  [--exact SECONDS]
+//                  [--threads N] --out PLAN.json [--ply PLAN.ply] [--quiet]
+//
+// Candidates are the largest VALID boxes of each facet (coverage/candidates.hpp), read from a
+// certipose-part folder or from a whole-part run made here first (one-shot mode), cut down to the
+// installation tolerance around their centres (--tolerance, default ±5 mm, ±0.02 rad). For each the
+// certified facet set C(B) is computed (coverage/inspection.hpp); the plan is greedy maximum
+// coverage (coverage/deployment.hpp), optionally replaced by GLPK's exact answer when it proves
+// one with fewer cameras within --exact SECONDS, and always comes with a lower bound (the larger
+// of the area bound and the LP relaxation's). Facets no chosen camera certifies are listed with
+// the reason. PLAN.json and the PLY are committed together; SIGINT/SIGTERM stop the run, leave no
+// file and exit 130/143. Errors: one line "certipose-plan: ..." on stderr, exit 1 (bad input,
+// write error) or 2 (bad command line).
+#include "program_support.hpp"
+
+#include <certipose/cgal.hpp>
+#include <certipose/coverage/candidates.hpp>
+#include <certipose/coverage/deployment.hpp>
+#include <certipose/coverage/glpk_deployment.hpp>
+#include <certipose/coverage/inspect_boxes.hpp>
+#include <certipose/io/json.hpp>
+#include <certipose/io/output_files.hpp>
+#include <certipose/io/part_files.hpp>
+#include <certipose/io/plan_files.hpp>
+#include <certipose/part/part_solver.hpp>
+#include <certipose/part/selection.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace certipose_program;
+using I = certipose::boost_interval;
+using policies = certipose::with_camera<certipose::calibrated_camera>;
+
+struct arguments {
+    fs::path mesh, camera, part_results, out, ply;
+    double scale = 1.0;
+    std::optional<double> position_eps, orientation_eps, coverage, exact;
+    std::optional<std::size_t> cameras;
+    std::string facets;
+    std::size_t per_facet = 1, threads = 0;
+    std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
+    bool quiet = false;
+};
+
+std::optional<arguments> parse(int argc, char** argv, int& code) {
+    CLI::App app{"certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (DESIGN.md section 6).",
+                 "certipose-plan"};
+    std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
+        exact, threads, facets, tolerance;
+    bool quiet = false;
+    app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
+    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
+    app.add_option("--part-results", part_results, "a certipose-part output folder (summary.json, boxes.jsonl)")->type_name("DIR")->check(CLI::ExistingDirectory);
+    app.add_option("--position-eps", position_eps, "one-shot mode: run the whole part first at this threshold (metres)")->type_name("METRES");
+    app.add_option("--orientation-eps", orientation_eps, "one-shot mode: orientation threshold (radians)")->type_name("RADIANS");
+    app.add_option("--facets", facets, "one-shot mode: facets to solve, e.g. 0,5,17-30 (default: all)")->type_name("LIST");
+    app.add_option("--cameras", cameras, "at most K cameras (maximum coverage)")->type_name("K");
+    app.add_option("--coverage", coverage, "the fewest cameras certifying this share of the coverable area (default 0.95)")->type_name("F");
+    app.add_option("--candidates-per-facet", per_facet, "largest VALID boxes of each facet to consider (default 1)")->type_name("N");
+    app.add_option("--tolerance", tolerance,
+                   "candidate boxes: half-widths around each VALID box's centre, metres and radians, or 'none' "
+                   "for whole boxes (default 0.005,0.02)")
+        ->type_name("P,O");
+    app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
+    app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
+    app.add_option("--out", out, "the plan")->type_name("PLAN.json")->required();
+    app.add_option("--ply", ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
+    app.add_flag("--quiet,-q", quiet, "print nothing but errors");
+    if (!parse_command_line(app, argc, argv, "certipose-plan", code)) return std::nullopt;
+    try {
+        arguments a;
+        a.mesh = mesh, a.camera = camera, a.part_results = part_results, a.out = out, a.ply = ply, a.quiet = quiet;
+        a.facets = facets;
+        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
+        if (!position_eps.empty()) a.position_eps = parse_double("--position-eps", position_eps, "a positive finite number of metres");
+        if (!orientation_eps.empty())
+            a.orientation_eps = parse_double("--orientation-eps", orientation_eps, "a positive finite number of radians");
+        if (part_results.empty() == !(a.position_eps && a.orientation_eps))
+            throw usage_error("give either --part-results DIR or both --position-eps and --orientation-eps (one-shot mode)");
+        if (!part_results.empty() && (a.position_eps || a.orientation_eps || !facets.empty()))
+            throw usage_error("--position-eps, --orientation-eps and --facets belong to the one-shot mode, not --part-results");
+        if (!cameras.empty() && !coverage.empty()) throw usage_error("give --cameras or --coverage, not both");
+        if (!cameras.empty()) a.cameras = parse_count("--cameras", cameras, 1);
+        if (!coverage.empty()) {
+            a.coverage = parse_double("--coverage", coverage, "a share in (0, 1]");
+            if (*a.coverage > 1.0) throw usage_error("--coverage: expected a share in (0, 1], got '" + coverage + "'");
+        }
+        if (!per_facet.empty()) a.per_facet = parse_count("--candidates-per-facet", per_facet, 1);
+        if (tolerance == "none") a.tolerance.reset();
+        else if (!tolerance.empty()) {
+            const auto comma = tolerance.find(',');
+            if (comma == std::string::npos)
+                throw usage_error("--tolerance: expected P,O (metres, radians) or 'none', got '" + tolerance + "'");
+            a.tolerance = std::array<double, 2>{
+                parse_double("--tolerance", tolerance.substr(0, comma), "a positive finite number of metres"),
+                parse_double("--tolerance", tolerance.substr(comma + 1), "a positive finite number of radians")};
+        }
+        if (!exact.empty()) a.exact = parse_double("--exact", exact, "a positive finite number of seconds");
+        if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
+        check_output("--out", a.out);
+        if (!a.ply.empty()) check_output("--ply", a.ply);
+        return a;
+    } catch (const usage_error& e) {
+        usage_failure("certipose-plan", e.what(), code);
+        return std::nullopt;
+    }
+}
+
+double since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); }
+
+/// The run in DIR must be of this mesh, camera and task, with occlusion checked: otherwise its
+/// boxes certify something else.
+void check_run(const certipose::part_summary& run, const certipose::part_summary& here, const fs::path& dir) {
+    const std::string where = (dir / "summary.json").string();
+    const auto mismatch = [&](const std::string& what, const std::string& theirs, const std::string& ours) {
+        throw certipose::invalid_argument(what, where + ": the run's " + what + " (" + theirs + ") is not this plan's (" + ours +
+                                                    "): plan with the mesh, --scale and camera the run used");
+    };
+    const auto text = [](double v) { return certipose::detail::format_double(v); };
+    if (run.mesh.faces != here.mesh.faces)
+        mismatch("mesh.faces", std::to_string(run.mesh.faces), std::to_string(here.mesh.faces));
+    if (!close(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
+    const auto& a = run.camera;
+    const auto& b = here.camera;
+    if (!close(a.width_px, b.width_px) || !close(a.height_px, b.height_px))
+        mismatch("camera size", text(a.width_px) + "x" + text(a.height_px), text(b.width_px) + "x" + text(b.height_px));
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (!close(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
+    if (!close(a.d_min, b.d_min) || !(close(a.d_max, b.d_max) || (std::isinf(a.d_max) && std::isinf(b.d_max))))
+        mismatch("camera distance range", text(a.d_min) + ".." + text(a.d_max), text(b.d_min) + ".." + text(b.d_max));
+    if (!close(run.task.min_view_angle, here.task.min_view_angle))
+        mismatch("task.min_view_angle", text(run.task.min_view_angle), text(here.task.min_view_angle));
+    if (!run.settings.occlusion_checked)
+        throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "
+                                                                        "its boxes certify no facet: run it with occlusion");
+}
+
+int run(const arguments& args, const interruption& signals) {
+    stage_line stage("certipose-plan", args.quiet);
+    stage.show("reading " + args.mesh.string());
+    const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+    const certipose::camera_task input = certipose::read_camera_task(args.camera);
+    stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
+    const certipose::part_solver<policies> part(mesh, input.calibrated(), input.task);
+    stage.done();
+    const auto& solver = part.solver();
+    const bool progress = show_progress(args.quiet);
+
+    certipose::plan_document doc;
+    doc.mesh = {args.mesh.string(), mesh.num_faces(), args.scale};
+    certipose::part_summary here;
+    here.mesh = doc.mesh;
+    certipose::describe_camera(here, solver.camera(), input.task);
+    doc.camera = here.camera;
+    doc.task = here.task;
+
+    // 1. Candidates, and what the run found for each facet (for the reasons of the uncovered).
+    const auto t0 = std::chrono::steady_clock::now();
+    certipose::candidate_pool<I> pool(args.per_facet);
+    std::vector<certipose::facet_record> records;
+    if (!args.part_results.empty()) {
+        stage.show("reading " + args.part_results.string());
+        const certipose::part_summary run = certipose::read_part_summary(args.part_results);
+        check_run(run, here, args.part_results);
+        records = run.facets;
+        certipose::read_boxes_jsonl(args.part_results / "boxes.jsonl", [&](const certipose::part_box& b) {
+            if (b.facet >= mesh.num_faces())
+                throw certipose::out_of_range("facet", b.facet, mesh.num_faces());
+            if (b.box.cls != certipose::box_class::valid || !b.occlusion_checked) return;
+            certipose::pose_box<I> box;
+            for (std::size_t k = 0; k < 3; ++k) {
+                box.position.x[k] = I(b.box.position[k][0], b.box.position[k][1]);
+                box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
+            }
+            pool.add(b.facet, box);
+        });
+        stage.done();
+    } else {
+        certipose::part_options opt;
+        opt.facet.position_eps = *args.position_eps;
+        opt.facet.orientation_eps = *args.orientation_eps;
+        opt.threads = args.threads;
+        opt.stop = signals.token();
+        if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
+        if (progress)
+            opt.progress = [](const certipose::part_progress& p) {
+                std::fprintf(stderr, "\r\033[Kcertipose-plan: solving facets %zu / %zu, ETA %s", p.facets_done, p.facets_total,
+                             duration_text(p.seconds_left).c_str());
+                return true;
+            };
+        const certipose::part_result r = part.solve(opt, pool);
+        if (progress) std::fputs("\r\033[K", stderr);
+        records = r.facets;
+    }
+    if (signals.interrupted()) return report_interrupted("certipose-plan", signals);
+    const double seconds_candidates = since(t0);
+    const std::vector<certipose::candidate_box<I>> candidates = pool.boxes();
+    doc.candidates = candidates.size();
+    doc.tolerance = args.tolerance;
+
+    // 2. C(B) of every candidate, plus its own facet (the run certified it for the whole box).
+    const auto t1 = std::chrono::steady_clock::now();
+    std::vector<certipose::pose_box<I>> boxes;
+    for (const auto& c : candidates) {
+        if (!args.tolerance) {
+            boxes.push_back(c.box);
+            continue;
+        }
+        const double p = (*args.tolerance)[0], o = (*args.tolerance)[1];
+        boxes.push_back(certipose::around_centre(c.box, {p, p, p, o, o, o}));
+    }
+    certipose::inspection_options iopt;
+    iopt.threads = args.threads;
+    iopt.stop = signals.token();
+    if (progress)
+        iopt.progress = [](std::size_t done, std::size_t all) {
+            std::fprintf(stderr, "\r\033[Kcertipose-plan: certified facet sets of %zu / %zu candidate boxes", done, all);
+            return true;
+        };
+    const certipose::inspection_run inspected = certipose::inspect_boxes(solver, boxes, iopt);
+    if (progress) std::fputs("\r\033[K", stderr);
+    if (signals.interrupted() || !inspected.completed) return report_interrupted("certipose-plan", signals);
+    const double seconds_inspection = since(t1);
+    std::vector<double> areas(mesh.num_faces());
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+        const auto& v = mesh.facet(f).v;
+        areas[f] = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).norm();
+    }
+    std::vector<certipose::deployment_candidate> sets(candidates.size());
+    for (std::size_t j = 0; j < candidates.size(); ++j) {
+        sets[j].facets = inspected.coverage[j].certified;
+        auto& fs = sets[j].facets;
+        if (!std::binary_search(fs.begin(), fs.end(), candidates[j].facet))
+            fs.insert(std::lower_bound(fs.begin(), fs.end(), candidates[j].facet), candidates[j].facet);
+    }
+
+    // 3. The choice and its lower bound.
+    const auto t2 = std::chrono::steady_clock::now();
+    certipose::deployment_options dopt;
+    dopt.cameras = args.cameras;
+    dopt.coverage = args.coverage;
+    doc.max_cameras = args.cameras;
+    doc.target_coverage = args.cameras ? args.coverage : std::optional<double>(args.coverage.value_or(0.95));
+    certipose::deployment_plan plan = certipose::plan_greedy(sets, areas, dopt);
+    std::string method = "area";
+    const std::size_t lp = certipose::lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9));
+    if (lp > plan.lower_bound) plan.lower_bound = lp, method = "lp";
+    bool exact = false;
+    if (args.exact && plan.chosen.size() > plan.lower_bound) {
+        const auto limit = std::chrono::milliseconds(static_cast<long long>(*args.exact * 1000));
+        if (const auto best = certipose::plan_exact(sets, areas, plan.certified_area * (1 - 1e-9), limit)) {
+            exact = true;
+            if (best->size() < plan.chosen.size()) {
+                const std::size_t bound = plan.lower_bound;
+                plan = certipose::plan_of(sets, areas, *best);
+                plan.lower_bound = std::max(bound, best->size());
+            } else {
+                plan.lower_bound = plan.chosen.size();  // proven optimal
+            }
+            method = "exact";
+        }
+    }
+    const double seconds_choice = since(t2);
+
+    for (std::size_t k = 0; k < plan.chosen.size(); ++k) {
+        const std::size_t j = plan.chosen[k];
+        const auto record = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, boxes[j]});
+        certipose::plan_document::camera_box cam;
+        cam.position = record.position;
+        cam.orientation = record.orientation;
+        for (std::size_t i = 0; i < 3; ++i) {
+            cam.nominal[i] = 0.5 * (record.position[i][0] + record.position[i][1]);
+            cam.nominal[i + 3] = 0.5 * (record.orientation[i][0] + record.orientation[i][1]);
+        }
+        cam.facets = sets[j].facets;
+        for (std::size_t f : cam.facets) cam.certified_area += areas[f];
+        cam.from_facet = candidates[j].facet;
+        doc.cameras.push_back(std::move(cam));
+    }
+    doc.coverage = {plan.certified_area, plan.coverable_area, plan.total_area, plan.lower_bound, method, plan.curve};
+
+    // 4. The facets no chosen camera certifies, and why.
+    std::vector<char> coverable(mesh.num_faces(), 0);
+    for (const auto& s : sets)
+        for (std::size_t f : s.facets) coverable[f] = 1;
+    std::vector<const certipose::facet_record*> record_of(mesh.num_faces(), nullptr);
+    for (const auto& r : records)
+        if (r.index < record_of.size()) record_of[r.index] = &r;
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+        if (plan.covered_by[f] != certipose::deployment_plan::npos) continue;
+        using certipose::uncovered_reason;
+        uncovered_reason why = uncovered_reason::not_solved;
+        if (coverable[f]) why = uncovered_reason::not_selected;
+        else if (const auto* r = record_of[f]; r && r->termination != certipose::facet_termination::skipped)
+            why = r->valid > 0 ? uncovered_reason::not_selected
+                  : r->boundary > 0 || r->termination != certipose::facet_termination::completed ? uncovered_reason::boundary_only
+                                                                                              : uncovered_reason::never_visible;
+        doc.uncovered.push_back({f, why});
+    }
+
+    certipose::output_files files;
+    files.add(args.out, certipose::json_text(certipose::plan_to_json(doc)));
+    if (!args.ply.empty()) files.add(args.ply, certipose::plan_ply_text(mesh, doc));
+    if (signals.interrupted()) return report_interrupted("certipose-plan", signals);
+    files.commit();
+
+    if (!args.quiet) {
+        const auto pct = [](double a, double b) { return b > 0 ? 100.0 * a / b : 0.0; };
+        std::printf("%s (%zu faces): %zu camera box(es) certify %.1f %% of the coverable area (%.1f %% of the part); "
+                    "at least %zu needed (%s bound)\n",
+                    args.mesh.string().c_str(), mesh.num_faces(), plan.chosen.size(), pct(plan.certified_area, plan.coverable_area),
+                    pct(plan.certified_area, plan.total_area), plan.lower_bound, method.c_str());
+        std::printf("  %zu candidates (%s %.2f s), their certified facet sets %.2f s, choice %.2f s%s; %zu facets uncovered\n",
+                    candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
+                    seconds_inspection, seconds_choice, exact ? " (GLPK exact)" : "", doc.uncovered.size());
+        std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply.empty() ? "" : " and ", args.ply.string().c_str());
+    }
+    return exit_ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int code = exit_ok;
+    const auto args = parse(argc, argv, code);
+    if (!args) return code;
+    return report_errors("certipose-plan", [&] {
+        std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}};
+        if (!args->part_results.empty()) {
+            inputs.push_back({"--part-results", args->part_results / "summary.json"});
+            inputs.push_back({"--part-results", args->part_results / "boxes.jsonl"});
+        }
+        std::vector<certipose::named_path> outputs{{"--out", args->out}};
+        if (!args->ply.empty()) outputs.push_back({"--ply", args->ply});
+        certipose::refuse_overwriting_inputs(inputs, outputs);
+        const interruption signals;
+        return run(*args, signals);
+    });
+}

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# certipose-part -> certipose-plan -> certipose-verify on facets of the sample part (CTest:
+# program.plan_and_verify).
+#   plan.sh PART PLAN VERIFY MESH CAMERA WORK_DIR
+# The plan is written with its PLY, refuses to overwrite an input or to plan from a run of
+# another scale, rejects contradictory options with exit 2, has a one-shot mode honouring
+# --cameras, and certipose-verify certifies the plan's boxes and the tolerance of an exact pose.
+set -uo pipefail
+part=$1 plan=$2 verify=$3 mesh=$4 camera=$5 work=$6
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 880-920 \
+    --out run --quiet || fail "certipose-part failed"
+
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --out plan.json --ply plan.ply >out 2>err \
+    || fail "certipose-plan failed: $(cat err)"
+grep -q '"cameras": *\[' plan.json || fail "plan.json has no cameras"
+grep -q '"lower_bound_cameras": *[1-9]' plan.json || fail "plan.json has no positive lower bound"
+grep -q '"uncovered"' plan.json || fail "plan.json has no uncovered list"
+head -c 3 plan.ply | grep -q ply || fail "plan.ply is not a PLY"
+grep -q 'camera box(es) certify' out || fail "no summary line: $(cat out)"
+[ -s err ] && fail "stderr not empty: $(cat err)"
+cameras=$(grep -c '"from_facet"' plan.json)
+[ "$cameras" -ge 1 ] || fail "no camera in the plan"
+
+# An output that is an input: refused, the input untouched.
+before=$(md5sum < "$camera")
+cp "$camera" cam.json
+"$plan" --mesh "$mesh" --camera cam.json --part-results run --out ./cam.json --quiet 2>err && fail "overwrote its input"
+cmp -s "$camera" cam.json || fail "the camera file was changed"
+[ "$(md5sum < "$camera")" = "$before" ] || fail "the camera file was changed"
+grep -q 'certipose-plan: ' err || fail "no error line for an output that is an input"
+
+# Contradictory options: exit 2, one line.
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --position-eps 0.1 --orientation-eps 0.38 \
+    --out x.json 2>err
+[ $? -eq 2 ] || fail "--part-results with --position-eps: expected exit 2"
+[ "$(wc -l < err)" -eq 1 ] || fail "more than one error line: $(cat err)"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --cameras 2 --coverage 0.9 --out x.json 2>err
+[ $? -eq 2 ] || fail "--cameras with --coverage: expected exit 2"
+[ -e x.json ] && fail "a failed run wrote its output"
+
+# A run of another scale certifies another part.
+"$plan" --mesh "$mesh" --scale 2 --camera "$camera" --part-results run --out y.json 2>err
+[ $? -eq 1 ] || fail "planning from a run of another scale: expected exit 1"
+grep -q 'mesh.scale' err || fail "the scale mismatch is not named: $(cat err)"
+[ -e y.json ] && fail "a failed run wrote its output"
+
+# One shot, at most 2 cameras.
+"$plan" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 895-905 --cameras 2 \
+    --out oneshot.json --quiet || fail "one-shot certipose-plan failed"
+n=$(grep -c '"from_facet"' oneshot.json)
+[ "$n" -ge 1 ] && [ "$n" -le 2 ] || fail "one-shot plan with --cameras 2 has $n cameras"
+
+# certipose-verify: the plan's boxes certify facets; an exact pose gets a tolerance box.
+"$verify" --mesh "$mesh" --camera "$camera" --poses plan.json --out report.json >vout 2>err || fail "certipose-verify failed: $(cat err)"
+grep -q '"poses"' report.json || fail "report.json has no poses"
+grep -Eq 'pose 0 \(box\): [1-9][0-9]* facets certified' vout || fail "the plan's first box certifies nothing: $(cat vout)"
+nominal=$(grep -o '"nominal": *\[[^]]*\]' plan.json | head -1 | sed 's/"nominal": *//')
+echo "{\"poses\": [$nominal]}" > poses.json
+"$verify" --mesh "$mesh" --camera "$camera" --poses poses.json >vout 2>err || fail "certipose-verify (exact pose) failed: $(cat err)"
+grep -q 'tolerance +-' vout || fail "no tolerance box for an exact pose: $(cat vout)"
+"$verify" --mesh "$mesh" --camera "$camera" --poses poses.json --out poses.json 2>err && fail "verify overwrote its input"
+exit 0
