@@ -2,7 +2,8 @@
 // set C(B) of a pose box holds for every pose in it (the single-facet certifier agrees, and
 // sampled poses, box corners included, pass the plain evaluator and ray caster for every facet
 // claimed), P(B) ⊇ C(B) and holds every facet a sampled pose really inspects, multi-facet
-// spaces inspect all of their facets, and a plan's every claim passes the same check.
+// spaces inspect all of their facets, and a plan's every claim passes the same check; greedy
+// against the brute-force optimum on the sample part's candidates.
 #include "solver_support.hpp"
 
 #include <certipose/coverage/candidates.hpp>
@@ -12,6 +13,8 @@
 #include <certipose/coverage/multi_facet.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
 
+#include <cmath>
+#include <initializer_list>
 #include <numbers>
 #include <string>
 
@@ -290,6 +293,28 @@ TEST_CASE("a deployment plan on the sample part: every claim of every camera pas
     CHECK(plan.certified_area >= 0.95 * plan.coverable_area * (1 - 1e-9));
     CHECK(plan.lower_bound >= 1);
     CHECK(plan.lower_bound <= plan.chosen.size());
+    // Greedy at k = 1, 2, 3 cameras against the brute-force optimum over these candidates.
+    for (std::size_t k = 1; k <= 3; ++k) {
+        double best = 0;
+        const std::size_t n = sets.size();
+        const auto area_of = [&](std::initializer_list<std::size_t> chosen) {
+            std::vector<deployment_candidate> pick;
+            for (std::size_t j : chosen) pick.push_back(sets[j]);
+            return union_area(pick, areas_of.areas());
+        };
+        for (std::size_t a = 0; a < n; ++a) {
+            if (k == 1) best = std::max(best, area_of({a}));
+            for (std::size_t b = a + 1; k >= 2 && b < n; ++b) {
+                if (k == 2) best = std::max(best, area_of({a, b}));
+                for (std::size_t c = b + 1; k == 3 && c < n; ++c) best = std::max(best, area_of({a, b, c}));
+            }
+        }
+        const deployment_plan g = plan_greedy(sets, areas_of.areas(), {.cameras = k});
+        CAPTURE(k);
+        CHECK(g.certified_area <= best * (1 + 1e-12));
+        CHECK(g.certified_area >= (1 - 1 / std::exp(1.0)) * best);
+        MESSAGE("k = " << k << ": greedy " << g.certified_area << " m^2, optimum " << best << " m^2");
+    }
     claim_report rep;
     for (std::size_t j : plan.chosen) check_claims(rep, solver, camera, boxes[j], sets[j].facets, 4, 47);
     MESSAGE("plan: " << plan.chosen.size() << " of " << candidates.size() << " candidate boxes certify "
