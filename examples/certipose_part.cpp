@@ -194,7 +194,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     if (progress) std::fputc('\n', stderr);
 
     certipose::part_summary s;
-    s.mesh = {args.mesh.string(), mesh.num_faces(), args.scale};
+    s.mesh = {args.mesh.string(), mesh.num_faces(), args.scale, certipose::mesh_digest(mesh)};
     certipose::describe_camera(s, part.solver().camera(), input.task);
     s.settings.position_eps = args.position_eps;
     s.settings.orientation_eps = args.orientation_eps;

@@ -144,6 +144,8 @@ void check_run(const certipose::part_summary& run, const certipose::part_summary
     if (run.mesh.faces != here.mesh.faces)
         mismatch("mesh.faces", std::to_string(run.mesh.faces), std::to_string(here.mesh.faces));
     if (!close(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
+    if (!run.mesh.digest.empty() && run.mesh.digest != here.mesh.digest)
+        mismatch("mesh.digest", run.mesh.digest, here.mesh.digest);
     const auto& a = run.camera;
     const auto& b = here.camera;
     if (!close(a.width_px, b.width_px) || !close(a.height_px, b.height_px))
@@ -175,6 +177,7 @@ int run(const arguments& args, const interruption& signals) {
     doc.mesh = {args.mesh.string(), mesh.num_faces(), args.scale};
     certipose::part_summary here;
     here.mesh = doc.mesh;
+    here.mesh.digest = certipose::mesh_digest(mesh);
     certipose::describe_camera(here, solver.camera(), input.task);
     doc.camera = here.camera;
     doc.task = here.task;
@@ -183,10 +186,15 @@ int run(const arguments& args, const interruption& signals) {
     const auto t0 = std::chrono::steady_clock::now();
     certipose::candidate_pool<I> pool(args.per_facet);
     std::vector<certipose::facet_record> records;
+    // A candidate's own facet is certified for it by the run: trusted when the run is known to be
+    // of this very mesh (its digest matches, or it ran here); otherwise only what the inspector
+    // proves counts.
+    bool trust_run = args.part_results.empty();
     if (!args.part_results.empty()) {
         stage.show("reading " + args.part_results.string());
         const certipose::part_summary run = certipose::read_part_summary(args.part_results);
         check_run(run, here, args.part_results);
+        trust_run = !run.mesh.digest.empty();
         records = run.facets;
         certipose::read_boxes_jsonl(args.part_results / "boxes.jsonl", [&](const certipose::part_box& b) {
             if (b.facet >= mesh.num_faces())
@@ -223,7 +231,7 @@ int run(const arguments& args, const interruption& signals) {
     doc.candidates = candidates.size();
     doc.tolerance = args.tolerance;
 
-    // 2. C(B) of every candidate, plus its own facet (the run certified it for the whole box).
+    // 2. C(B) of every candidate, plus its own facet when the run is trusted (see above).
     const auto t1 = std::chrono::steady_clock::now();
     std::vector<certipose::pose_box<I>> boxes;
     for (const auto& c : candidates) {
@@ -255,7 +263,7 @@ int run(const arguments& args, const interruption& signals) {
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         sets[j].facets = inspected.coverage[j].certified;
         auto& fs = sets[j].facets;
-        if (!std::binary_search(fs.begin(), fs.end(), candidates[j].facet))
+        if (trust_run && !std::binary_search(fs.begin(), fs.end(), candidates[j].facet))
             fs.insert(std::lower_bound(fs.begin(), fs.end(), candidates[j].facet), candidates[j].facet);
     }
 
@@ -316,10 +324,12 @@ int run(const arguments& args, const interruption& signals) {
         using certipose::uncovered_reason;
         uncovered_reason why = uncovered_reason::not_solved;
         if (coverable[f]) why = uncovered_reason::not_selected;
-        else if (const auto* r = record_of[f]; r && r->termination != certipose::facet_termination::skipped)
-            why = r->valid > 0 ? uncovered_reason::not_selected
-                  : r->boundary > 0 || r->termination != certipose::facet_termination::completed ? uncovered_reason::boundary_only
-                                                                                              : uncovered_reason::never_visible;
+        else if (const auto* r = record_of[f]; r && r->termination != certipose::facet_termination::skipped) {
+            if (r->valid > 0) why = uncovered_reason::not_selected;  // VALID boxes, none a candidate that proves it
+            else if (r->boundary > 0) why = uncovered_reason::boundary_only;
+            else if (r->termination != certipose::facet_termination::completed) why = uncovered_reason::not_finished;
+            else why = uncovered_reason::never_visible;
+        }
         doc.uncovered.push_back({f, why});
     }
 

@@ -113,6 +113,10 @@ TEST_CASE("deployment input errors name the value") {
     const std::vector<deployment_candidate> bad{{{0, 2}}};
     CHECK_THROWS_AS(plan_greedy(bad, areas), out_of_range);
     CHECK_THROWS_AS(plan_of(good, areas, {5}), out_of_range);
+    // A facet listed twice would count its area twice (and GLPK would abort on the repeated entry).
+    const std::vector<deployment_candidate> repeated{{{1, 1}}};
+    CHECK_THROWS_WITH_AS(plan_greedy(repeated, areas), doctest::Contains("candidate 0 lists facet 1 twice"), invalid_argument);
+    CHECK_THROWS_AS(union_area(repeated, areas), invalid_argument);
     // Nothing to cover: an empty plan, not an error.
     const deployment_plan none = plan_greedy({}, areas);
     CHECK(none.chosen.empty());

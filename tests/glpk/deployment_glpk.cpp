@@ -41,3 +41,11 @@ TEST_CASE("GLPK: the LP bound is a lower bound and the exact plan is optimal (br
         CHECK(union_area(chosen, areas) >= target * (1 - 1e-9));
     }
 }
+
+TEST_CASE("GLPK: malformed or missing candidates are errors or empty answers, never an abort") {
+    const std::vector<double> areas{1.0, 2.0};
+    CHECK_THROWS_AS(lp_lower_bound({{{1, 1}}}, areas, 1.0), invalid_argument);
+    CHECK_THROWS_AS(plan_exact({{{0, 7}}}, areas, 1.0, std::chrono::milliseconds(100)), out_of_range);
+    CHECK(lp_lower_bound({}, areas, 1.0) == 0);  // nothing to bound with: nothing claimed
+    CHECK(!plan_exact({}, areas, 1.0, std::chrono::milliseconds(100)).has_value());
+}

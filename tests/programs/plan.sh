@@ -47,6 +47,13 @@ grep -q 'certipose-plan: ' err || fail "no error line for an output that is an i
 grep -q 'mesh.scale' err || fail "the scale mismatch is not named: $(cat err)"
 [ -e y.json ] && fail "a failed run wrote its output"
 
+# A run of another mesh with as many faces: its digest differs.
+mkdir -p other && cp run/boxes.jsonl other/ && sed 's/"digest": *"[0-9a-f]*"/"digest":"0123456789abcdef"/' run/summary.json > other/summary.json
+grep -q '0123456789abcdef' other/summary.json || fail "summary.json has no mesh digest"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results other --out z.json 2>err
+[ $? -eq 1 ] || fail "planning from a run of another mesh: expected exit 1"
+grep -q 'mesh.digest' err || fail "the mesh mismatch is not named: $(cat err)"
+
 # One shot, at most 2 cameras.
 "$plan" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 895-905 --cameras 2 \
     --out oneshot.json --quiet || fail "one-shot certipose-plan failed"

@@ -57,8 +57,28 @@ struct deployment_plan {
     static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 };
 
-/// The area of the facets in `facets`, each counted once.
+namespace detail {
+
+/// Every candidate's facets must be increasing (each counted once) and index `areas`.
+inline void check_candidates(const std::vector<deployment_candidate>& candidates, std::size_t facets) {
+    for (std::size_t j = 0; j < candidates.size(); ++j) {
+        const auto& fs = candidates[j].facets;
+        for (std::size_t k = 0; k < fs.size(); ++k) {
+            if (fs[k] >= facets) throw out_of_range("facet", fs[k], facets);
+            if (k > 0 && fs[k] <= fs[k - 1])
+                throw invalid_argument("candidates", "deployment: candidate " + std::to_string(j) + " lists facet " +
+                                                         std::to_string(fs[k]) +
+                                                         " twice or out of order (facet lists must be increasing)");
+        }
+    }
+}
+
+}  // namespace detail
+
+/// The area of the facets some candidate lists, each counted once. Throws as plan_greedy does
+/// for a malformed candidate.
 inline double union_area(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas) {
+    detail::check_candidates(candidates, areas.size());
     std::vector<char> in(areas.size(), 0);
     double a = 0;
     for (const auto& c : candidates)
@@ -70,6 +90,7 @@ inline double union_area(const std::vector<deployment_candidate>& candidates, co
 /// The area bound: a plan certifying `target` needs at least ⌈target / (largest candidate area)⌉ boxes.
 inline std::size_t area_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                     double target) {
+    detail::check_candidates(candidates, areas.size());
     double largest = 0;
     for (const auto& c : candidates) {
         double a = 0;
@@ -80,14 +101,12 @@ inline std::size_t area_lower_bound(const std::vector<deployment_candidate>& can
     return static_cast<std::size_t>(std::ceil(target / largest * (1 - 1e-12)));
 }
 
-/// Greedy maximum coverage (see the header comment). Throws invalid_argument for bad options
-/// and out_of_range for a facet index beyond `areas`.
+/// Greedy maximum coverage (see the header comment). Throws invalid_argument for bad options or
+/// a candidate whose facets are not increasing, out_of_range for a facet index beyond `areas`.
 inline deployment_plan plan_greedy(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                    const deployment_options& options = {}) {
     options.validate();
-    for (const auto& c : candidates)
-        for (std::size_t f : c.facets)
-            if (f >= areas.size()) throw out_of_range("facet", f, areas.size());
+    detail::check_candidates(candidates, areas.size());
     deployment_plan plan;
     for (double a : areas) plan.total_area += a;
     plan.coverable_area = union_area(candidates, areas);
@@ -133,6 +152,7 @@ inline deployment_plan plan_greedy(const std::vector<deployment_candidate>& cand
 /// Throws out_of_range for an index beyond `candidates`.
 inline deployment_plan plan_of(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                const std::vector<std::size_t>& chosen) {
+    detail::check_candidates(candidates, areas.size());
     std::vector<deployment_candidate> subset;
     for (std::size_t j : chosen) {
         if (j >= candidates.size()) throw out_of_range("candidate", j, candidates.size());

@@ -28,8 +28,10 @@ struct glp_deleter {
 };
 
 /// The covering program for `target` (see the header comment); columns 1..n are the candidates.
+/// Throws for malformed candidates (GLPK would abort() on a repeated facet). Needs a candidate.
 inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector<deployment_candidate>& candidates,
                                                                const std::vector<double>& areas, double target) {
+    check_candidates(candidates, areas.size());
     glp_term_out(GLP_OFF);
     std::unique_ptr<glp_prob, glp_deleter> lp(glp_create_prob());
     glp_set_obj_dir(lp.get(), GLP_MIN);
@@ -69,7 +71,10 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
 /// LP could not be solved (then nothing is claimed).
 inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                   double target) {
-    if (!(target > 0)) return 0;
+    if (!(target > 0) || candidates.empty()) {
+        detail::check_candidates(candidates, areas.size());
+        return 0;
+    }
     auto lp = detail::covering_program(candidates, areas, target);
     glp_smcp parm;
     glp_init_smcp(&parm);
@@ -85,6 +90,11 @@ inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candi
 inline std::optional<std::vector<std::size_t>> plan_exact(const std::vector<deployment_candidate>& candidates,
                                                           const std::vector<double>& areas, double target,
                                                           std::chrono::milliseconds time_limit) {
+    if (candidates.empty()) {
+        detail::check_candidates(candidates, areas.size());
+        if (target > 0) return std::nullopt;
+        return std::vector<std::size_t>{};
+    }
     auto lp = detail::covering_program(candidates, areas, target);
     for (int j = 1; j <= static_cast<int>(candidates.size()); ++j) glp_set_col_kind(lp.get(), j, GLP_BV);
     glp_iocp parm;

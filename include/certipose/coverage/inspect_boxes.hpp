@@ -27,7 +27,8 @@ namespace certipose {
 struct inspection_options {
     std::size_t threads = 0;  ///< worker threads; 0: every core
     std::stop_token stop{};
-    /// Called now and then from one thread with (boxes done, boxes in all); false stops the run.
+    /// Called now and then with (boxes done, boxes in all), from whichever worker thread finished
+    /// a batch, one call at a time (so it needs no lock of its own); false stops the run.
     std::function<bool(std::size_t, std::size_t)> progress{};
 };
 

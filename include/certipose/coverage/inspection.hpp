@@ -3,27 +3,30 @@
 // impossible (DESIGN.md §7, "Coverage with guarantees").
 //
 // `facet_inspector` holds, for one solver (part, camera, task, occlusion scene), each facet's
-// position constraint set, built once. `inspect(box)` then goes through the facets:
-//  1. a cheap cull proves most of them impossible with plain geometry and wide margins: the box
-//     too far from the facet (every point farther than d_max from the nearest vertex... of the
-//     facet's bounding sphere), entirely behind the facet's plane, or the facet's centroid
-//     outside every view the orientation box allows (the optical axis lies within ρ of the axis
-//     of the box's centre orientation; the centroid is seen from the box within δ of the
-//     direction from its centre; a facet all of whose vertices are in the image has its centroid
-//     in it, which is at most the image's corner angle off the axis);
-//  2. the facet's constraint set (constraints 1–4, its test or its complement contraction) and
-//     certify_fov (constraint 5) over the whole box: violated → impossible; both certified →
+// position constraint set, built the first time a box needs it. `inspect(box)` goes through the
+// facets:
+//  1. a cheap cull proves most of them impossible with plain geometry and wide margins: the ball
+//     around the box is farther than d_max from the facet's bounding sphere, or nearer than
+//     d_min to all of it, or wholly behind the facet's plane, or the facet's centroid is outside
+//     every view the orientation box allows (every optical axis of the box lies within ρ of the
+//     axis at its centre orientation; from anywhere in the ball the centroid is within
+//     asin(r / distance) of its direction from the centre; a facet whose three vertices are in
+//     the image has its centroid in it, at most the image-corner angle off the axis);
+//  2. the facet's constraint set (constraints 1–4: its test, then its complement contraction)
+//     and certify_fov (constraint 5) over the whole box: either violated → impossible; both
+//     certified → step 3; otherwise possible;
 //  3. the occlusion policy (constraint 6): VISIBLE, or no shadow of a possible blocker reaching
-//     the box → the facet is in C(B); OCCLUDED → impossible; otherwise it stays in P(B) only.
+//     the box → the facet is in C(B); otherwise it stays in P(B) only.
 // Steps 2–3 are the proofs `pose_solver::certify` uses, so a facet in C(B) is one the
-// single-facet solver would certify for the box. The inspector owns one constraint set per
-// facet and is not shared between threads: build one per thread (it takes milliseconds).
+// single-facet solver would certify for the box. An inspector owns its constraint sets and a
+// cache of occlusion shadows, so it is not shared between threads: build one per thread.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -60,16 +63,14 @@ public:
     using interval_type = typename solver_type::interval_type;
     using constraint_set_type = typename solver_type::constraint_set_type;
 
-    /// Builds each facet's constraint set for `solver`'s camera range and task (milliseconds for
-    /// a few thousand facets). `solver` must outlive the inspector.
+    /// Prepares the facets' areas and bounding spheres (each facet's constraint set is built when a
+    /// box first needs it). `solver` must outlive the inspector.
     explicit facet_inspector(const solver_type& solver) : solver_(&solver), frustum_(solver.camera()) {
         const triangle_mesh& m = solver.part();
-        sets_.reserve(m.num_faces());
+        sets_.resize(m.num_faces());
         areas_.reserve(m.num_faces());
         for (std::size_t f = 0; f < m.num_faces(); ++f) {
             const facet& fa = m.facet(f);
-            sets_.push_back(make_constraint_set<constraint_set_type>(position_problem{fa, solver.range(), solver.task()},
-                                                                     solver.constraints()));
             areas_.push_back(0.5 * (fa.v[1] - fa.v[0]).cross(fa.v[2] - fa.v[0]).norm());
             double r = 0;
             for (const auto& v : fa.v) r = std::max(r, (v - fa.centroid).norm());
@@ -161,6 +162,8 @@ public:
         for (double v : pose)
             if (!std::isfinite(v))
                 throw invalid_argument("pose", "facet_inspector: the pose must be finite, got " + detail::format_double(v));
+        if (!(eps[0] > 0 && eps[1] > 0 && std::isfinite(eps[0]) && std::isfinite(eps[1])))
+            throw invalid_argument("eps", "facet_inspector::largest_box_keeping: eps must be positive and finite");
         for (std::size_t f : facets)
             if (f >= sets_.size()) throw out_of_range("facet", f, sets_.size());
         const auto ok = [&](const pose_box<interval_type>& b) {
@@ -183,7 +186,7 @@ private:
 
     // Steps 2–3 of the header comment for one facet.
     decision decide(const pose_box<interval_type>& box, std::size_t f) {
-        const verdict v = detail::prove_position_set(sets_[f], box.position);
+        const verdict v = detail::prove_position_set(set(f), box.position);
         if (v == verdict::violated) {
             ++stats_.by_constraints;
             return decision::impossible;
@@ -195,15 +198,29 @@ private:
         }
         if (v != verdict::satisfied || fov != verdict::satisfied) return decision::possible;
         ++stats_.occlusion_tests;
+        if (cache_.size() > max_cached_shadows) cache_.clear();  // bounded memory over many boxes
         return detail::prove_visible(solver_->occlusion(), box.position, f, cache_) ? decision::certified
                                                                                     : decision::possible;
     }
 
+    // Facet f's position constraint set, built the first time a box reaches step 2 for it: most
+    // facets of a large part are culled by every box (a 10^6-face part would otherwise hold
+    // gigabytes of sets it never uses).
+    constraint_set_type& set(std::size_t f) {
+        if (!sets_[f]) {
+            const solver_type& s = *solver_;
+            sets_[f] = std::make_unique<constraint_set_type>(make_constraint_set<constraint_set_type>(
+                position_problem{s.part().facet(f), s.range(), s.task()}, s.constraints()));
+        }
+        return *sets_[f];
+    }
+
     const solver_type* solver_;
     fov_frustum<interval_type> frustum_;
-    std::vector<constraint_set_type> sets_;
+    std::vector<std::unique_ptr<constraint_set_type>> sets_;  // a pointer each: most stay empty
     std::vector<double> areas_, radius_;
     double corner_angle_ = 0;
+    static constexpr std::size_t max_cached_shadows = std::size_t{1} << 16;
     detail::shadow_cache<interval_type> cache_;
     inspection_stats stats_;
 };

@@ -26,9 +26,9 @@
 
 namespace certipose {
 
-/// Limits of an intersection: pieces thinner than `min_width` in some component are dropped
-/// (they carry no installation tolerance), and at most `max_boxes` are kept (the largest by
-/// position volume).
+/// Limits of an intersection: pieces thinner than `min_width` (metres) in some position component
+/// are dropped (they carry no installation tolerance), and at most `max_boxes` are kept (the
+/// largest by position volume).
 struct intersection_options {
     double min_width = 0.0;
     std::size_t max_boxes = 100000;
@@ -36,27 +36,32 @@ struct intersection_options {
 
 namespace detail {
 
-/// `box` with φ and β moved by `shift_phi`, `shift_beta` (multiples of 2π), bounds rounded inward.
+/// `box` with φ and β moved by `turns_phi`, `turns_beta` whole turns (−1, 0 or 1), the shifted
+/// bounds rounded inward: 2π is not a double, so each bound moves by an enclosure of 2π with the
+/// outward-rounded arithmetic of `I`, and the inner ends are kept (lo' ≥ lo + 2π, hi' ≤ hi + 2π).
 template <Interval I>
-pose_box<I> shifted(const pose_box<I>& box, double shift_phi, double shift_beta) {
+pose_box<I> shifted(const pose_box<I>& box, int turns_phi, int turns_beta) {
     pose_box<I> out = box;
-    const auto move = [](const I& x, double by) {
-        if (by == 0.0) return x;
-        double lo = lower(x) + by, hi = upper(x) + by;  // round to nearest, then step inward
-        lo = std::nextafter(lo, std::numeric_limits<double>::infinity());
-        hi = std::nextafter(hi, -std::numeric_limits<double>::infinity());
+    const rounding_guard<I> rounding;
+    const double pi_lo = std::numbers::pi;  // the double below π
+    const I two_pi = I(2.0 * pi_lo, std::nextafter(2.0 * pi_lo, 8.0));
+    const auto move = [&](const I& x, int turns) {
+        if (turns == 0) return x;
+        const I by = static_cast<double>(turns) * two_pi;
+        const double lo = upper(I(lower(x)) + by), hi = lower(I(upper(x)) + by);
         return lo <= hi ? I(lo, hi) : interval_traits<I>::empty();
     };
-    out.orientation.x[0] = move(box.orientation[0], shift_phi);
-    out.orientation.x[2] = move(box.orientation[2], shift_beta);
+    out.orientation.x[0] = move(box.orientation[0], turns_phi);
+    out.orientation.x[2] = move(box.orientation[2], turns_beta);
     return out;
 }
 
+/// Position widths all at least `min_width` (orientation widths are not limited).
 template <Interval I>
 bool thick_enough(const pose_box<I>& b, double min_width) {
     if (is_empty(b)) return false;
     for (std::size_t k = 0; k < 3; ++k)
-        if (!(width(b.position[k]) >= min_width) || !(width(b.orientation[k]) >= 0.0)) return false;
+        if (!(width(b.position[k]) >= min_width)) return false;
     return true;
 }
 
@@ -66,13 +71,12 @@ bool thick_enough(const pose_box<I>& b, double min_width) {
 template <Interval I>
 std::vector<pose_box<I>> intersect_spaces(const std::vector<pose_box<I>>& a, const std::vector<pose_box<I>>& b,
                                           const intersection_options& options = {}) {
-    constexpr double two_pi = 2 * std::numbers::pi;
     std::vector<pose_box<I>> out;
     for (const auto& x : a)
         for (const auto& y : b) {
             if (is_empty(intersect(x.position, y.position))) continue;
-            for (const double sp : {0.0, two_pi, -two_pi})
-                for (const double sb : {0.0, two_pi, -two_pi}) {
+            for (const int sp : {0, 1, -1})
+                for (const int sb : {0, 1, -1}) {
                     const pose_box<I> ys = detail::shifted(y, sp, sb);
                     pose_box<I> r{intersect(x.position, ys.position), intersect(x.orientation, ys.orientation)};
                     if (detail::thick_enough(r, options.min_width)) out.push_back(r);

@@ -8,7 +8,7 @@
 // was not checked carry "occlusion": "unchecked". `jsonl_sink` streams lines as facets finish,
 // so memory holds one facet's boxes at a time.
 //
-// summary.json: {"mesh": {"path", "faces", "scale"}, "camera": {as in the single-facet result},
+// summary.json: {"mesh": {"path", "faces", "scale", "digest"}, "camera": {as in the single-facet result},
 // "task", "settings", "facets": [{"index", "valid", "boundary", "seconds", "termination",
 // "reason" (when skipped), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
@@ -20,7 +20,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <bit>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -105,6 +107,7 @@ struct part_summary {
         std::string path;
         std::size_t faces = 0;
         double scale = 1.0;
+        std::string digest{};  ///< mesh_digest of the mesh the run solved; empty: not recorded
     };
     struct settings_record {
         double position_eps = 0, orientation_eps = 0;
@@ -137,6 +140,25 @@ inline std::optional<facet_termination> facet_termination_from_string(std::strin
     return std::nullopt;
 }
 
+/// A fingerprint of the mesh a run solved (its scaled vertex coordinates, bit for bit, and its
+/// faces; FNV-1a, 64 bits, as 16 hex digits): a tool reading the run's boxes later checks it is
+/// given the same mesh, not merely one with as many faces.
+inline std::string mesh_digest(const triangle_mesh& m) {
+    std::uint64_t h = 14695981039346656037ULL;
+    const auto mix = [&](std::uint64_t word) {
+        for (int b = 0; b < 8; ++b) h = (h ^ ((word >> (8 * b)) & 0xffU)) * 1099511628211ULL;
+    };
+    mix(m.num_vertices()), mix(m.num_faces());
+    for (const auto& v : m.vertices())
+        for (int k = 0; k < 3; ++k) mix(std::bit_cast<std::uint64_t>(v[k]));
+    for (const auto& f : m.faces())
+        for (auto i : f) mix(static_cast<std::uint64_t>(i));
+    static constexpr char hex[] = "0123456789abcdef";
+    std::string out(16, '0');
+    for (int i = 15; i >= 0; --i, h >>= 4) out[static_cast<std::size_t>(i)] = hex[h & 0xfU];
+    return out;
+}
+
 /// The camera and task records of a document, from the camera the run used.
 template <CameraModel C>
 void describe_camera(part_summary& s, const C& camera, const inspection_task& task) {
@@ -156,6 +178,7 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     using namespace detail::json_io;
     ordered_json j;
     j["mesh"] = {{"path", s.mesh.path}, {"faces", s.mesh.faces}, {"scale", finite(s.mesh.scale, "mesh.scale")}};
+    if (!s.mesh.digest.empty()) j["mesh"]["digest"] = s.mesh.digest;
     j["camera"] = camera_record_json(s.camera);
     j["task"] = task_record_json(s.task);
     const auto optional = [](const std::optional<double>& v, const std::string& path) {
@@ -212,6 +235,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
     s.mesh.path = as_string(require(mesh, "mesh", "path", "a string"), "mesh.path", "a string");
     s.mesh.faces = as_count(require(mesh, "mesh", "faces", "an integer"), "mesh.faces");
     s.mesh.scale = required_number(mesh, "mesh", "scale");
+    if (const json* d = find(mesh, "digest")) s.mesh.digest = as_string(*d, "mesh.digest", "a string");
     const json& camera = require_object(require(j, "", "camera", "an object"), "camera");
     s.camera.width_px = required_number(camera, "camera", "width_px");
     s.camera.height_px = required_number(camera, "camera", "height_px");

@@ -37,6 +37,7 @@ enum class uncovered_reason {
     boundary_only,  ///< only BOUNDARY boxes at this ε: finer thresholds may certify it
     not_selected,   ///< certified by some candidate, but the plan stopped before taking one
     not_solved,     ///< not in the run's facet selection, or skipped by it
+    not_finished,   ///< a budget, deadline or cancellation stopped its solve before any box
 };
 
 inline constexpr const char* to_string(uncovered_reason r) noexcept {
@@ -45,6 +46,7 @@ inline constexpr const char* to_string(uncovered_reason r) noexcept {
         case uncovered_reason::boundary_only: return "only in BOUNDARY boxes at this eps";
         case uncovered_reason::not_selected: return "not selected";
         case uncovered_reason::not_solved: return "not solved";
+        case uncovered_reason::not_finished: return "solve stopped early";
     }
     return "?";
 }

@@ -163,6 +163,9 @@ public:
         }
         return it->second;
     }
+    std::size_t size() const noexcept { return map_.size(); }
+    /// Forgets every shadow (references returned by `get` become invalid).
+    void clear() noexcept { map_.clear(); }
 
 private:
     std::unordered_map<std::uint64_t, prepared_shadow<I>> map_;
