@@ -11,8 +11,8 @@
 // A whole VALID box is a poor camera: it must certify a facet for every orientation it holds,
 // and its orientation intervals are up to ε_o wide, so it certifies little beyond its own facet.
 // `around_centre(box, tolerance)` cuts it down to the installation tolerance the engineer needs
-// (say ±5 mm, ±0.02 rad) around its centre: a sub-box, so still VALID for its facet, and one that
-// certifies at least as many facets as the whole box — on the sample part hundreds instead of one.
+// (say ±5 mm, ±0.02 rad) around its centre: a sub-box, so still VALID for its facet, and one from
+// all of which more facets are inspected — on the sample part hundreds are certified instead of one.
 #pragma once
 
 #include <algorithm>
