@@ -67,9 +67,11 @@ struct facet_enclosures {
     }
 };
 
-/// The contractor of the set: HC4 over the polynomial constraints (outer constants).
-template <Interval I>
-auto make_position_hc4(const facet& f, const facet_enclosures<I>& e) {
+/// Calls `build(dist2, pc, backface, view)` with what both expressions below share: ‖p − v‖² of a
+/// vertex v, p − c, and the closures of the backface and viewing-angle constraints (parameters
+/// 0–5 hold N and c, 6 sin θ_v · ‖N‖).
+template <Interval I, class Build>
+auto with_position_terms(const facet& f, const facet_enclosures<I>& e, Build&& build) {
     constexpr var<0> x;
     constexpr var<1> y;
     constexpr var<2> z;
@@ -79,11 +81,19 @@ auto make_position_hc4(const facet& f, const facet_enclosures<I>& e) {
     const auto P = vec(x, y, z);
     const auto V1 = vec(f.v[0].x(), f.v[0].y(), f.v[0].z());
     const auto PC = P - C;
-    return hc4(dist2(f.v[0]) <= e.dmax2_hi, dist2(f.v[1]) <= e.dmax2_hi, dist2(f.v[2]) <= e.dmax2_hi,
-               dist2(f.v[0]) >= e.dmin2_lo, dist2(f.v[1]) >= e.dmin2_lo, dist2(f.v[2]) >= e.dmin2_lo,
-               sqr_norm(PC) >= e.dmin2_lo,                                      // q = c
-               dot(P - V1, N) >= 0.0,                                           // backface (closure)
-               dot(PC, N) - param<6>(e.sin_view_norm) * sqrt(sqr_norm(PC)) >= 0.0);  // view angle
+    return build(dist2, PC, dot(P - V1, N) >= 0.0,                                   // backface (closure)
+                 dot(PC, N) - param<6>(e.sin_view_norm) * sqrt(sqr_norm(PC)) >= 0.0);  // view angle
+}
+
+/// The contractor of the set: HC4 over the polynomial constraints (outer constants).
+template <Interval I>
+auto make_position_hc4(const facet& f, const facet_enclosures<I>& e) {
+    return with_position_terms(f, e, [&](const auto& dist2, const auto& PC, const auto& backface, const auto& view) {
+        return hc4(dist2(f.v[0]) <= e.dmax2_hi, dist2(f.v[1]) <= e.dmax2_hi, dist2(f.v[2]) <= e.dmax2_hi,
+                   dist2(f.v[0]) >= e.dmin2_lo, dist2(f.v[1]) >= e.dmin2_lo, dist2(f.v[2]) >= e.dmin2_lo,
+                   sqr_norm(PC) >= e.dmin2_lo,  // q = c
+                   backface, view);
+    });
 }
 
 /// Sufficient conditions of constraints 1–4, whose negation `contract_complement` contracts
@@ -98,19 +108,11 @@ auto make_position_hc4(const facet& f, const facet_enclosures<I>& e) {
 /// radius, which is small beside d_min for the facets of a part.
 template <Interval I>
 auto make_position_complement(const facet& f, const facet_enclosures<I>& e) {
-    constexpr var<0> x;
-    constexpr var<1> y;
-    constexpr var<2> z;
-    const auto dist2 = [&](const Eigen::Vector3d& v) { return sqr(x - v.x()) + sqr(y - v.y()) + sqr(z - v.z()); };
-    const auto N = vec(param<0>(e.N[0]), param<1>(e.N[1]), param<2>(e.N[2]));
-    const auto C = vec(param<3>(e.c[0]), param<4>(e.c[1]), param<5>(e.c[2]));
-    const auto P = vec(x, y, z);
-    const auto V1 = vec(f.v[0].x(), f.v[0].y(), f.v[0].z());
-    const auto PC = P - C;
-    return not_in(dist2(f.v[0]) <= e.dmax2_lo, dist2(f.v[1]) <= e.dmax2_lo, dist2(f.v[2]) <= e.dmax2_lo,
-                  sqr_norm(PC) >= e.near2_hi,                                   // ‖p − c‖ ≥ d_min + r_f
-                  dot(P - V1, N) >= 0.0,                                        // backface (closure)
-                  dot(PC, N) - param<6>(e.sin_view_norm) * sqrt(sqr_norm(PC)) >= 0.0);  // view angle
+    return with_position_terms(f, e, [&](const auto& dist2, const auto& PC, const auto& backface, const auto& view) {
+        return not_in(dist2(f.v[0]) <= e.dmax2_lo, dist2(f.v[1]) <= e.dmax2_lo, dist2(f.v[2]) <= e.dmax2_lo,
+                      sqr_norm(PC) >= e.near2_hi,  // ‖p − c‖ ≥ d_min + r_f
+                      backface, view);
+    });
 }
 
 }  // namespace detail
