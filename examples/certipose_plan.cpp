@@ -255,10 +255,7 @@ int run(const arguments& args, const interruption& signals) {
     if (signals.interrupted() || !inspected.completed) return report_interrupted("certipose-plan", signals);
     const double seconds_inspection = since(t1);
     std::vector<double> areas(mesh.num_faces());
-    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-        const auto& v = mesh.facet(f).v;
-        areas[f] = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).norm();
-    }
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) areas[f] = mesh.facet(f).area;
     std::vector<certipose::deployment_candidate> sets(candidates.size());
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         sets[j].facets = inspected.coverage[j].certified;

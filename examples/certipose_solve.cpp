@@ -167,11 +167,7 @@ int main(int argc, char** argv) {
 
         options.stop = signals.token();
         const auto result = solve(mesh, camera, input.task, args, options);
-        const auto interrupted = [&] {
-            std::cerr << "certipose-solve: interrupted by " << interruption::name(signals.signal())
-                      << "; nothing written\n";
-            return signals.exit_code();
-        };
+        const auto interrupted = [&] { return certipose_program::report_interrupted("certipose-solve", signals); };
         if (signals.interrupted()) return interrupted();
 
         const certipose::result_document document =

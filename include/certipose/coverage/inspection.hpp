@@ -71,7 +71,7 @@ public:
         areas_.reserve(m.num_faces());
         for (std::size_t f = 0; f < m.num_faces(); ++f) {
             const facet& fa = m.facet(f);
-            areas_.push_back(0.5 * (fa.v[1] - fa.v[0]).cross(fa.v[2] - fa.v[0]).norm());
+            areas_.push_back(fa.area);
             double r = 0;
             for (const auto& v : fa.v) r = std::max(r, (v - fa.centroid).norm());
             radius_.push_back(r);
