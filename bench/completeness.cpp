@@ -10,6 +10,7 @@
 // off by in every direction), reported with the Euler-angle widths of that box.
 //
 //   bench_completeness [samples=6000] [modes=paper,inner,full,refine,grow]
+//   (also: cuts, leaf, depth1 — one corner box per leaf — and refine_grow)
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/verify/point_check.hpp>
@@ -88,6 +89,7 @@ certipose::solve_options mode_options(const std::string& mode) {
     if (mode == "paper") o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
     else if (mode == "inner") o.occlusion_cuts = o.leaf_corner_boxes = false;
     else if (mode == "cuts") o.leaf_corner_boxes = false;
+    else if (mode == "depth1") o.corner_depth = 1;  // one corner box per leaf (before corner_depth)
     else if (mode == "leaf") o.occlusion_cuts = false;
     else if (mode == "refine") {
         o.time_limit = std::chrono::seconds(1);

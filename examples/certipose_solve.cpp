@@ -155,6 +155,7 @@ int main(int argc, char** argv) {
             options.time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                 std::chrono::duration<double>(*args.time_limit_seconds));
         options.inner_contraction = options.occlusion_cuts = options.leaf_corner_boxes = !args.paper_paving;
+        if (args.corner_depth) options.corner_depth = *args.corner_depth;
         if (args.refine_seconds)
             options.refine = certipose::refinement{
                 .time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -186,8 +187,9 @@ int main(int argc, char** argv) {
             const auto& st = document.stats;
             std::printf("facet %zu of %s (%zu faces): %zu valid, %zu boundary boxes in %.3f s\n", args.facet,
                         args.mesh.string().c_str(), mesh.num_faces(), st.valid, st.boundary, st.seconds);
-            std::printf("  position stage    %8.3f s  (%zu valid / %zu boundary position boxes, %zu occlusion tests)\n",
-                        st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests);
+            std::printf("  position stage    %8.3f s  (%zu valid / %zu boundary position boxes, %zu occlusion tests, "
+                        "%zu shadow walks)\n",
+                        st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests, st.shadow_walks);
             std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
                         st.orientation_certifications);
             if (st.inner_pieces + st.occlusion_pieces > 0)

@@ -62,6 +62,7 @@ struct arguments {
     std::optional<std::size_t> max_boxes;               ///< --max-boxes budget
     std::optional<double> time_limit_seconds;           ///< --time-limit budget
     bool paper_paving = false;     ///< --paper-paving: no inner contraction, occlusion cuts or corner boxes
+    std::optional<std::size_t> corner_depth;            ///< --corner-depth: corner boxes per leaf in a row
     std::optional<double> refine_seconds;               ///< --refine: anytime refinement budget
     bool grow = false;             ///< --grow: widen the VALID boxes
     bool quiet = false;            ///< --quiet: no summary, no progress
@@ -76,6 +77,7 @@ struct parse_outcome {
 namespace detail {
 using certipose_program::check_output;
 using certipose_program::one_line;
+using certipose_program::parse_corner_depth;
 using certipose_program::parse_count;
 using certipose_program::parse_double;
 using certipose_program::usage_error;
@@ -90,7 +92,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                  "DESIGN.md section 6 and optionally a PLY of the boxes.",
                  "certipose-solve"};
     std::string mesh, camera, output, ply, facet, position_eps, orientation_eps, scale,
-        max_boxes, time_limit, refine, occlusion = "aabb";
+        max_boxes, time_limit, refine, corner_depth, occlusion = "aabb";
     bool quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")
         ->type_name("PART")
@@ -126,6 +128,9 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
         ->type_name("SECONDS");
     app.add_flag("--paper-paving", paper_paving,
                  "pave as the paper does: bisect partly valid boxes, no inner contraction, occlusion cuts or corner boxes");
+    app.add_option("--corner-depth", corner_depth,
+                   "corner boxes one undecided leaf may give in a row, 1-8 (default 2; 1 writes fewer boxes)")
+        ->type_name("N");
     app.add_option("--refine", refine,
                    "keep refining below position-eps, largest undecided box first, for SECONDS")
         ->type_name("SECONDS");
@@ -184,6 +189,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
         if (!refine.empty())
             a.refine_seconds = detail::parse_double("--refine", refine, "a positive finite number of seconds");
         a.paper_paving = paper_paving;
+        if (!corner_depth.empty()) a.corner_depth = detail::parse_corner_depth(corner_depth);
         a.grow = grow;
         a.quiet = quiet;
         return {std::move(a), exit_ok};

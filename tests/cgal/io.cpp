@@ -187,6 +187,11 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
          }},
         {"bad position threshold", [&] { certipose::solve_options{.position_eps = 0.0}.validate(); }},
         {"bad orientation threshold", [&] { certipose::solve_options{.orientation_eps = std::nan("")}.validate(); }},
+        {"bad corner depth", [&] {
+             certipose::solve_options o;
+             o.corner_depth = 0;
+             o.validate();
+         }},
         {"output directory missing", [&] { certipose::write_file_atomically(dir / "no" / "result.json", "{}"); }},
         {"deployment coverage out of range", [&] {
              certipose::deployment_options o;

@@ -129,6 +129,7 @@ void check_same_document(const certipose::result_document& a, const certipose::r
     CHECK(s.contractions == t.contractions);
     CHECK(s.bisections == t.bisections);
     CHECK(s.occlusion_tests == t.occlusion_tests);
+    CHECK(s.shadow_walks == t.shadow_walks);
     CHECK(s.orientation_certifications == t.orientation_certifications);
     CHECK(s.boundary_reasons == t.boundary_reasons);
     CHECK(s.occlusion_checked == t.occlusion_checked);
@@ -163,6 +164,7 @@ certipose::solve_result<I> sample_result() {
     r.stats.contractions = 123456789012ULL;
     r.stats.bisections = 42;
     r.stats.occlusion_tests = 99;
+    r.stats.shadow_walks = 31;
     r.stats.orientation_certifications = 5;
     r.stats.seconds = 0.123456789;
     r.stats.seconds_position = 0.1;

@@ -554,6 +554,7 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     settings["inner_contraction"] = d.settings.inner_contraction;
     settings["occlusion_cuts"] = d.settings.occlusion_cuts;
     settings["leaf_corner_boxes"] = d.settings.leaf_corner_boxes;
+    settings["corner_depth"] = d.settings.corner_depth;
     if (d.settings.refine_min_width)
         settings["refine_min_width"] = finite(*d.settings.refine_min_width, "settings.refine_min_width");
     settings["grow"] = d.settings.grow;
@@ -584,6 +585,7 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     stats["contractions"] = s.contractions;
     stats["bisections"] = s.bisections;
     stats["occlusion_tests"] = s.occlusion_tests;
+    stats["shadow_walks"] = s.shadow_walks;
     stats["inner_pieces"] = s.inner_pieces;
     stats["occlusion_pieces"] = s.occlusion_pieces;
     stats["corner_boxes"] = s.corner_boxes;
@@ -700,6 +702,7 @@ inline result_document result_from_json(const nlohmann::json& j) {
     flag(settings, "settings", "inner_contraction", d.settings.inner_contraction);
     flag(settings, "settings", "occlusion_cuts", d.settings.occlusion_cuts);
     flag(settings, "settings", "leaf_corner_boxes", d.settings.leaf_corner_boxes);
+    if (const json* v = find(settings, "corner_depth")) d.settings.corner_depth = as_count(*v, "settings.corner_depth");
     d.settings.refine_min_width = optional_number(settings, "settings", "refine_min_width");
     flag(settings, "settings", "grow", d.settings.grow);
 
@@ -744,6 +747,7 @@ inline result_document result_from_json(const nlohmann::json& j) {
     count("contractions", s.contractions);
     count("bisections", s.bisections);
     count("occlusion_tests", s.occlusion_tests);
+    count("shadow_walks", s.shadow_walks);
     count("inner_pieces", s.inner_pieces);
     count("occlusion_pieces", s.occlusion_pieces);
     count("corner_boxes", s.corner_boxes);

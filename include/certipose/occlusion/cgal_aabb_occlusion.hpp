@@ -130,11 +130,14 @@ inline bool node_outside_hull(const sight_hull& H, const pt& lo, const pt& hi, s
 }
 
 /// The fast decision whether triangle T blocks some sight line, i.e. meets H off the facet
-/// plane: `yes` and `no` are exact; `unsure` leaves it to the rational clip.
+/// plane: `yes` and `no` are exact; `unsure` leaves it to the rational clip. Without `proofs`
+/// the search for a proof of `yes` and the costliest separating axes are skipped: `unsure`
+/// then also stands for `yes` (what a caller listing the triangles that *may* block needs:
+/// most of the time of a blocker walk went into proving hits it treated as maybes anyway).
 enum class hit { no, yes, unsure };
 
 inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, bool is_part,
-                  const scene_triangle& T, aabb_trace& trace) {
+                  const scene_triangle& T, aabb_trace& trace, bool proofs = true) {
     for (int k = 0; k < 3; ++k)
         if (T.hi[k] < H.lo[k] || T.lo[k] > H.hi[k]) return hit::no;
     ++trace.triangles_tested;
@@ -226,7 +229,7 @@ inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, 
                         if (in_cone2(v, H.pts[zeros[a]], H.pts[zeros[b]], *d)) return hit::yes;
             return hit::no;
         }
-        if (witnessed()) return hit::yes;
+        if (proofs && witnessed()) return hit::yes;
         return hit::unsure;
     }
 
@@ -269,6 +272,7 @@ inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, 
         hull_range(nt, hmin, hmax);
         if (separated(nt, hmin, hmax)) return hit::no;
     }
+    if (!proofs) return hit::unsure;
     if (witnessed()) return hit::yes;
     for (const pt* et : {&e1, &e2, &e3})
         for (std::size_t d = 0; d < H.num_edge_dirs; ++d) {
@@ -628,7 +632,7 @@ struct blocker_walk {
     void intersection(const sight_hull&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
         if (idx == facet || stopped) return;
-        if (decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace) == hit::no) return;
+        if (decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace, false) == hit::no) return;
         if (++seen > aabb_occlusion::max_blockers || !visit(idx)) stopped = true;
     }
 

@@ -254,7 +254,8 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     }
     const position_stage_options stage_options{.inner_contraction = options.inner_contraction,
                                                .occlusion_cuts = options.occlusion_cuts,
-                                               .leaf_corner_boxes = options.leaf_corner_boxes};
+                                               .leaf_corner_boxes = options.leaf_corner_boxes,
+                                               .corner_depth = options.corner_depth};
     std::optional<position_refinement> refinement;
     if (options.refine) refinement = position_refinement{split_width, refine_deadline};
     auto stage1 = pave_positions<I, constraint_set_type, contraction_type, bisector_type, buffer_type>(
@@ -264,6 +265,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     st.contractions = stage1.counters.contractions;
     st.bisections = ps.bisections;
     st.occlusion_tests = stage1.counters.occlusion_tests;
+    st.shadow_walks = stage1.counters.shadow_walks;
     st.inner_pieces = stage1.counters.inner_pieces;
     st.occlusion_pieces = stage1.counters.occlusion_pieces;
     st.corner_boxes = stage1.counters.corner_boxes;
@@ -296,7 +298,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
         // Small position boxes in one cell of ε_p (pieces, corner boxes, refined leaves) are
         // oriented together first: an orientation certified over their hull holds for each
         // (constraint 5 over a position box holds over every box inside it). Cells whose hull
-        // cannot be oriented fall back to one search per box.
+        // cannot be oriented are split (below) before falling back to one search per box.
         std::map<std::array<long long, 3>, std::vector<std::size_t>> cells;
         const auto& valid = stage1.boxes.valid;
         for (std::size_t i = 0; i < valid.size(); ++i) {
@@ -314,30 +316,50 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             by_volume.emplace_back(v, &members);
         }
         std::stable_sort(by_volume.begin(), by_volume.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-        for (const auto& [cell_volume, members_ptr] : by_volume) {
-            const std::vector<std::size_t>& members = *members_ptr;
-            bool grouped = false;
-            if (members.size() > 1 && past_paper && !halted && !options.stop.stop_requested() &&
-                !(deadline && clock::now() >= *deadline)) {
-                position_box<I> h = valid[members[0]];
-                for (std::size_t i : members) h = hull(h, valid[i]);
-                ++done;
-                const orientation_result<I> o = orientation_.orient(h, f, camera_, options.orientation_eps);
-                st.orientation_certifications += o.certifications;
-                if (!o.boxes.empty()) {
-                    grouped = true;
-                    ++st.orientation_groups;
-                    for (std::size_t i : members) {
-                        for (const auto& e : o.boxes) {
-                            out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{valid[i], e}});
-                            ++st.valid;
-                        }
-                        st.valid_volume += volume(valid[i]);
-                    }
-                }
-            }
-            if (!grouped)
+        // A cell whose hull no orientation fits is split in two across the hull's widest side
+        // (at the median member) and each half tried as a group, down to groups of
+        // `min_group`; what is left goes one box at a time. Refined leaves and corner
+        // staircases fill a cell with many boxes, most of which share an orientation with
+        // their neighbours even when the whole cell does not.
+        constexpr std::size_t min_group = 4;
+        const auto orient_group = [&](auto& self, std::span<std::size_t> members) -> void {
+            if (members.size() < 2 || !past_paper || halted || options.stop.stop_requested() ||
+                (deadline && clock::now() >= *deadline)) {
                 for (std::size_t i : members) todo.push_back(valid[i]);
+                return;
+            }
+            position_box<I> h = valid[members[0]];
+            for (std::size_t i : members) h = hull(h, valid[i]);
+            ++done;
+            const orientation_result<I> o = orientation_.orient(h, f, camera_, options.orientation_eps);
+            st.orientation_certifications += o.certifications;
+            if (!o.boxes.empty()) {
+                ++st.orientation_groups;
+                for (std::size_t i : members) {
+                    for (const auto& e : o.boxes) {
+                        out.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{valid[i], e}});
+                        ++st.valid;
+                    }
+                    st.valid_volume += volume(valid[i]);
+                }
+                return;
+            }
+            if (members.size() < 2 * min_group) {
+                for (std::size_t i : members) todo.push_back(valid[i]);
+                return;
+            }
+            std::size_t k = 0;
+            for (std::size_t d = 1; d < 3; ++d)
+                if (width(h[d]) > width(h[k])) k = d;
+            const auto half = members.begin() + static_cast<std::ptrdiff_t>(members.size() / 2);
+            std::nth_element(members.begin(), half, members.end(),
+                             [&](std::size_t a, std::size_t b) { return mid(valid[a][k]) < mid(valid[b][k]); });
+            self(self, members.first(members.size() / 2));
+            self(self, members.subspan(members.size() / 2));
+        };
+        for (auto& [cell_volume, members_ptr] : by_volume) {
+            std::vector<std::size_t> members = *members_ptr;
+            orient_group(orient_group, members);
         }
         // Popped from the back: largest first (ties in cell order).
         std::reverse(todo.begin(), todo.end());

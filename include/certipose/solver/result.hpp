@@ -40,7 +40,8 @@ struct solve_stats {
     std::size_t position_valid = 0;            ///< certified position boxes (before orientation)
     std::size_t position_boundary = 0;
     std::size_t contractions = 0, bisections = 0;
-    std::size_t occlusion_tests = 0;
+    std::size_t occlusion_tests = 0;  ///< occlusion classifications (the policy's classify)
+    std::size_t shadow_walks = 0;     ///< tree walks for the shadows of possible blockers (occlusion cuts)
     std::size_t inner_pieces = 0;      ///< position pieces the complement contraction carved off
     std::size_t occlusion_pieces = 0;  ///< VALID position pieces carved off occlusion-PARTIAL boxes
     std::size_t corner_boxes = 0;      ///< VALID corner boxes split off boxes left undecided at ε_p

@@ -116,6 +116,9 @@ struct solve_options {
     /// Past the paper: of a box left undecided at ε_p, certify the largest box from one of its
     /// corners and leave only the rest BOUNDARY. All three off: the paper's paving.
     bool leaf_corner_boxes = true;
+    /// How many corner boxes one such box may give in a row (1–8): the rest of a corner box
+    /// may give one of its own, and so on, a staircase along the boundary. 1: one per box.
+    std::size_t corner_depth = 2;
     /// Anytime refinement below ε_p (see `refinement`); unset: the paper's ε_p stopping rule.
     std::optional<refinement> refine{};
     /// Widen the VALID boxes into fewer, larger ones (merge neighbours, then move every face
@@ -131,6 +134,9 @@ struct solve_options {
                                    "solve_options: orientation_eps must be positive and finite, got " +
                                        detail::format_double(orientation_eps));
         if (max_boxes == 0) throw invalid_argument("max_boxes", "solve_options: max_boxes must be at least 1");
+        if (corner_depth < 1 || corner_depth > 8)
+            throw invalid_argument("corner_depth",
+                                   "solve_options: corner_depth must be between 1 and 8, got " + std::to_string(corner_depth));
         if (refine) refine->validate(position_eps);
         if (grow) grow->validate();
     }
