@@ -109,16 +109,6 @@ inline double parse_double(const std::string& option, const std::string& text, c
 }
 
 inline std::size_t parse_count(const std::string& option, const std::string& text,
-                               std::size_t min);
-
-/// --corner-depth: solve_options::corner_depth, 1 to 8.
-inline std::size_t parse_corner_depth(const std::string& text) {
-    const std::size_t v = parse_count("--corner-depth", text, 1);
-    if (v > 8) throw usage_error("--corner-depth: expected an integer from 1 to 8, got " + text);
-    return v;
-}
-
-inline std::size_t parse_count(const std::string& option, const std::string& text,
                                std::size_t min) {
     std::size_t v = 0;
     const char* first = text.data();
@@ -132,6 +122,13 @@ inline std::size_t parse_count(const std::string& option, const std::string& tex
     if (v < min)
         throw usage_error(option + ": expected an integer >= " + std::to_string(min) + ", got " +
                           text);
+    return v;
+}
+
+/// --corner-depth: solve_options::corner_depth, 1 to 8.
+inline std::size_t parse_corner_depth(const std::string& text) {
+    const std::size_t v = parse_count("--corner-depth", text, 1);
+    if (v > 8) throw usage_error("--corner-depth: expected an integer from 1 to 8, got " + text);
     return v;
 }
 

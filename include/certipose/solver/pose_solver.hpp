@@ -348,9 +348,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
                 for (std::size_t i : members) todo.push_back(valid[i]);
                 return;
             }
-            std::size_t k = 0;
-            for (std::size_t d = 1; d < 3; ++d)
-                if (width(h[d]) > width(h[k])) k = d;
+            const std::size_t k = widest_dimension(h);
             const auto half = members.begin() + static_cast<std::ptrdiff_t>(members.size() / 2);
             std::nth_element(members.begin(), half, members.end(),
                              [&](std::size_t a, std::size_t b) { return mid(valid[a][k]) < mid(valid[b][k]); });

@@ -276,12 +276,6 @@ private:
         return true;
     }
 
-    static double max_width(const box& b) {
-        double w = 0;
-        for (int k = 0; k < 3; ++k) w = std::max(w, upper(b[k]) - lower(b[k]));
-        return w;
-    }
-
     /// No point of q lies in a shadow of the list.
     static bool outside(const shadow_list<I>& list, const box& q) {
         const rounding_guard<I> rounding;
