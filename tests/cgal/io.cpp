@@ -167,6 +167,12 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         {"mesh file not a mesh (PLY)", [&] { certipose::read_mesh(file("garbage.ply", "garbage\n")); }},
         {"mesh file empty", [&] { certipose::read_mesh(file("empty.off", "")); }},
         {"mesh file truncated", [&] { certipose::read_mesh(file("truncated.off", "OFF\n3 1 0\n0 0 0\n")); }},
+        {"PLY list longer than the file", [&] {
+             certipose::read_mesh(file("longlist.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                                       "property float y\nproperty float z\nelement face 1\n"
+                                                       "property list uchar int vertex_indices\nend_header\n"
+                                                       "0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n"));
+         }},
         {"NaN coordinate (OFF)", [&] { certipose::read_mesh(file("nan.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n")); }},
         {"infinite coordinate (OBJ)", [&] { certipose::read_mesh(file("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n")); }},
         {"face index out of range (OFF)", [&] { certipose::read_mesh(file("badidx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")); }},

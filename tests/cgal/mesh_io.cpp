@@ -4,6 +4,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -184,6 +185,72 @@ TEST_CASE("read_mesh: STL soups are welded, OBJ soups weld with a tolerance") {
         "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
     CHECK(ply.num_faces() == 4);
     CHECK(certipose::is_closed_manifold(ply));
+}
+
+// A binary PLY of the unit tetrahedron: float x y z per vertex, a list of `count_type` counts
+// and int indices per face; `first_count` replaces the first face's count (3) as written.
+std::string binary_tetra_ply(bool big_endian, std::uint32_t first_count = 3, const std::string& count_type = "uchar") {
+    std::string s = std::string("ply\nformat ") + (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 4\nproperty list " + count_type + " int vertex_indices\nend_header\n";
+    const auto put = [&](const void* p, std::size_t n) {
+        std::string bytes(static_cast<const char*>(p), n);
+        if (big_endian) std::reverse(bytes.begin(), bytes.end());  // the test machine is little-endian
+        s += bytes;
+    };
+    const float xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const auto& v : xyz)
+        for (float c : v) put(&c, 4);
+    const std::int32_t faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (int f = 0; f < 4; ++f) {
+        const std::uint32_t count = f == 0 ? first_count : 3;
+        if (count_type == "uchar") {
+            const auto c = static_cast<std::uint8_t>(count);
+            put(&c, 1);
+        } else {
+            put(&count, 4);
+        }
+        for (std::int32_t i : faces[f]) put(&i, 4);
+    }
+    return s;
+}
+
+TEST_CASE("read_mesh: binary PLY bodies are walked before CGAL reads them") {
+    for (const bool big : {false, true}) {
+        CAPTURE(big);
+        const auto m = certipose::read_mesh(write_text("tetra_bin.ply", binary_tetra_ply(big)));
+        CHECK(m.num_faces() == 4);
+        CHECK(certipose::is_closed_manifold(m));
+        const auto m32 = certipose::read_mesh(write_text("tetra_bin32.ply", binary_tetra_ply(big, 3, "uint")));
+        CHECK(m32.num_faces() == 4);
+        // A count of ~1.95e9 indices made CGAL 5.5 allocate 7.8 GB (tests/fuzz/regressions/mesh_ply):
+        // refused, naming the element, the record and the count.
+        const auto huge = thrown<certipose::io_error>(
+            [&] { certipose::read_mesh(write_text("huge_list.ply", binary_tetra_ply(big, 1950000000u, "uint"))); });
+        CHECK(contains(huge.what(), "huge_list.ply"));
+        CHECK(contains(huge.what(), "element 'face' record 0 lists 1950000000 items of 4 bytes"));
+        const auto negative = thrown<certipose::io_error>(
+            [&] { certipose::read_mesh(write_text("negative_list.ply", binary_tetra_ply(big, 0xffffffffu, "int"))); });
+        CHECK(contains(negative.what(), "negative list count"));
+        std::string cut = binary_tetra_ply(big);
+        cut.resize(cut.size() - 5);
+        const auto short_file = thrown<certipose::io_error>(
+            [&] { certipose::read_mesh(write_text("cut.ply", cut)); });
+        CHECK(contains(short_file.what(), "element 'face' record 3 lists 3 items of 4 bytes; only 7 bytes are left"));
+    }
+    const auto float_count = thrown<certipose::io_error>([&] {
+        certipose::read_mesh(write_text(
+            "float_count.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nelement face 1\n"
+                               "property list float int vertex_indices\nend_header\n0\n3 0 0 0\n"));
+    });
+    CHECK(contains(float_count.what(), "list count type 'float' is not an integer type"));
+    const auto ascii_huge = thrown<certipose::io_error>([&] {
+        certipose::read_mesh(write_text(
+            "ascii_huge.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                              "0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n"));
+    });
+    CHECK(contains(ascii_huge.what(), "element 'face' record 0 lists 2000000000 items"));
 }
 
 TEST_CASE("read_mesh: errors name the file") {

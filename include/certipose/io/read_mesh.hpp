@@ -246,10 +246,135 @@ inline std::string screen_off(const std::filesystem::path& path) {
     return {};
 }
 
-/// Screens a PLY header before CGAL reads the file (CGAL 5.5's PLY reader runs off its buffers
-/// on a malformed element line: tests/fuzz): "ply", a format line, then only comment, obj_info,
-/// element NAME COUNT and property lines with PLY's types, up to end_header, with element counts
-/// the file's size can hold. Returns why the file is refused, or nothing.
+/// One element of a PLY header: its name, count and properties (a list property has a count
+/// type; a scalar one only `type`).
+struct ply_property {
+    std::string type;
+    std::string count_type;  // empty: a scalar property
+};
+struct ply_element {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<ply_property> properties;
+};
+
+/// Bytes of one value of a PLY type (the header screen admits only these names).
+inline std::size_t ply_type_size(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "double" || t == "float64") return 8;
+    return 4;
+}
+
+inline bool ply_integer_type(const std::string& t) {
+    return t != "float" && t != "float32" && t != "double" && t != "float64";
+}
+
+inline bool ply_signed_type(const std::string& t) {
+    return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+}
+
+/// Reads a binary file's bytes in blocks, for the body screen (one read per block, not per value).
+class ply_bytes {
+public:
+    explicit ply_bytes(std::istream& in) : in_(in) {}
+    bool skip(std::uint64_t n) {
+        while (n > 0) {
+            if (pos_ == end_ && !fill()) return false;
+            const std::uint64_t k = std::min<std::uint64_t>(n, end_ - pos_);
+            pos_ += static_cast<std::size_t>(k);
+            n -= k;
+        }
+        return true;
+    }
+    bool take(unsigned char* out, std::size_t n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            if (pos_ == end_ && !fill()) return false;
+            out[i] = static_cast<unsigned char>(buf_[pos_++]);
+        }
+        return true;
+    }
+
+private:
+    bool fill() {
+        in_.read(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+        end_ = static_cast<std::size_t>(in_.gcount());
+        pos_ = 0;
+        return end_ > 0;
+    }
+    std::istream& in_;
+    std::vector<char> buf_ = std::vector<char>(std::size_t{1} << 16);
+    std::size_t pos_ = 0, end_ = 0;
+};
+
+/// Walks a PLY body as its header declares it and checks every list count before CGAL reads it:
+/// CGAL 5.5 resizes a vector to a list's count as read (a count of 2e9 int32 indices is an 8 GB
+/// allocation: tests/fuzz/regressions/mesh_ply), so a count is refused when it is negative, not
+/// a whole number, or more items than the bytes left in the file can hold. `left` is the body's
+/// size in bytes. Returns why the file is refused, or nothing.
+inline std::string screen_ply_body(std::istream& in, const std::string& format,
+                                   const std::vector<ply_element>& elements, std::uint64_t left,
+                                   const std::string& name) {
+    const auto where = [&](const ply_element& e, std::uint64_t r) {
+        return name + ": element '" + e.name + "' record " + std::to_string(r) + " ";
+    };
+    if (format == "ascii") {
+        std::string token;
+        for (const auto& e : elements)
+            for (std::uint64_t r = 0; r < e.count; ++r)
+                for (const auto& p : e.properties) {
+                    if (!(in >> token)) return where(e, r) + "is cut short: the file ends";
+                    if (p.count_type.empty()) continue;
+                    std::uint64_t n = 0;
+                    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), n);
+                    if (ec != std::errc{} || end != token.data() + token.size())
+                        return where(e, r) + "has list count '" + token.substr(0, 40) + "', not a whole number >= 0";
+                    if (n > (left + 1) / 2)  // n items take at least 2n - 1 bytes (digit, separator)
+                        return where(e, r) + "lists " + token + " items; the file's " + std::to_string(left) +
+                               " body bytes cannot hold them";
+                    for (std::uint64_t k = 0; k < n; ++k)
+                        if (!(in >> token)) return where(e, r) + "is cut short: the file ends inside a list";
+                }
+        return {};
+    }
+    const bool big = format == "binary_big_endian";
+    ply_bytes bytes(in);
+    for (const auto& e : elements) {
+        if (e.properties.empty()) continue;
+        for (std::uint64_t r = 0; r < e.count; ++r)
+            for (const auto& p : e.properties) {
+                if (p.count_type.empty()) {
+                    const std::size_t size = ply_type_size(p.type);
+                    if (size > left || !bytes.skip(size)) return where(e, r) + "is cut short: the file ends";
+                    left -= size;
+                    continue;
+                }
+                const std::size_t size = ply_type_size(p.count_type);
+                unsigned char raw[8] = {};
+                if (size > left || !bytes.take(raw, size)) return where(e, r) + "is cut short: the file ends";
+                left -= size;
+                if (big) std::reverse(raw, raw + size);
+                std::uint64_t n = 0;
+                for (std::size_t k = size; k-- > 0;) n = (n << 8) | raw[k];
+                if (ply_signed_type(p.count_type) && (raw[size - 1] & 0x80))
+                    return where(e, r) + "has a negative list count";
+                const std::uint64_t item = ply_type_size(p.type);
+                if (n > left / item)
+                    return where(e, r) + "lists " + std::to_string(n) + " items of " + std::to_string(item) +
+                           " bytes; only " + std::to_string(left) + " bytes are left";
+                if (!bytes.skip(n * item)) return where(e, r) + "is cut short: the file ends";
+                left -= n * item;
+            }
+    }
+    return {};
+}
+
+/// Screens a PLY file before CGAL reads it (CGAL 5.5's PLY reader runs off its buffers on a
+/// malformed element line and allocates whatever a list count says: tests/fuzz): "ply", a
+/// format line, then only comment, obj_info, element NAME COUNT and property lines with PLY's
+/// types (list counts of an integer type), up to end_header, with element counts the file's
+/// size can hold; then the body, walked as declared (screen_ply_body). Returns why the file is
+/// refused, or nothing.
 inline std::string screen_ply(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::error_code ec;
@@ -257,8 +382,9 @@ inline std::string screen_ply(const std::filesystem::path& path) {
     const std::uintmax_t bytes = ec ? 0 : size;
     const std::string at = path.string() + " line ";
     std::string line;
+    std::string format;
+    std::vector<ply_element> elements;
     std::size_t line_no = 0;
-    bool element_seen = false;
     const auto is_type = [](const std::string& t) {
         static const char* types[] = {"char",  "uchar", "short",  "ushort",  "int",     "uint",   "float",  "double",
                                       "int8",  "uint8", "int16",  "uint16",  "int32",   "uint32", "float32", "float64"};
@@ -279,11 +405,19 @@ inline std::string screen_ply(const std::filesystem::path& path) {
             if (w.size() != 3 || w[0] != "format" ||
                 (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian") || w[2] != "1.0")
                 return bad("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+            format = w[1];
             continue;
         }
         if (w.empty()) return bad("empty header line");
         if (w[0] == "comment" || w[0] == "obj_info") continue;
-        if (w[0] == "end_header") return w.size() == 1 ? std::string{} : bad("text after end_header");
+        if (w[0] == "end_header") {
+            if (w.size() != 1) return bad("text after end_header");
+            const auto body = in.tellg();
+            const std::uint64_t left = body < 0 || static_cast<std::uintmax_t>(body) > bytes
+                                           ? 0
+                                           : bytes - static_cast<std::uintmax_t>(body);
+            return screen_ply_body(in, format, elements, left, path.string());
+        }
         if (w[0] == "element") {
             std::uint64_t n = 0;
             const bool digits = w.size() == 3 && !w[2].empty() && w[2].size() <= 19 &&
@@ -291,13 +425,20 @@ inline std::string screen_ply(const std::filesystem::path& path) {
             if (!digits || std::from_chars(w[2].data(), w[2].data() + w[2].size(), n).ec != std::errc{})
                 return bad("expected 'element NAME COUNT'");
             if (n > bytes) return bad("element count " + w[2] + " does not fit a file of " + std::to_string(bytes) + " bytes");
-            element_seen = true;
+            elements.push_back({w[1], n, {}});
             continue;
         }
         if (w[0] == "property") {
-            if (!element_seen) return bad("a property before any element");
-            if (w.size() == 3 && is_type(w[1])) continue;
-            if (w.size() == 5 && w[1] == "list" && is_type(w[2]) && is_type(w[3])) continue;
+            if (elements.empty()) return bad("a property before any element");
+            if (w.size() == 3 && is_type(w[1])) {
+                elements.back().properties.push_back({w[1], {}});
+                continue;
+            }
+            if (w.size() == 5 && w[1] == "list" && is_type(w[2]) && is_type(w[3])) {
+                if (!ply_integer_type(w[2])) return bad("list count type '" + w[2] + "' is not an integer type");
+                elements.back().properties.push_back({w[3], w[2]});
+                continue;
+            }
             return bad("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
         }
         return bad("unknown header line '" + line.substr(0, 40) + "'");
