@@ -43,6 +43,14 @@
 #include <thread>
 #include <vector>
 
+// This TU also holds this program's one copy of the CGAL code behind certipose's non-template
+// functions (tests/CMakeLists.txt: CERTIPOSE_PRECOMPILED_DEFINITIONS here, declarations only in
+// the others), and so the boolean policy's, which the others see declared only too.
+#if !CERTIPOSE_DETAIL_WITH_DEFINITIONS
+#error "tests/cgal/occlusion.cpp must be compiled with CERTIPOSE_PRECOMPILED_DEFINITIONS (tests/CMakeLists.txt)"
+#endif
+template class certipose::basic_boolean_occlusion<void>;
+
 using namespace certipose;
 using V = Eigen::Vector3d;
 using box3 = Eigen::AlignedBox3d;

@@ -16,8 +16,9 @@
 // and querying the occlusion scenes, reading meshes). Header-only (the default) it is `inline`
 // and their definitions come with the headers. When CERTIPOSE_PRECOMPILED is defined — the
 // `certipose::precompiled` CMake target does it for the code that links it — the headers only
-// declare them, and the one translation unit of that target defines them once, together with
-// the explicit instantiation of the default pipeline (certipose/detail/precompiled.hpp). Every
+// declare them, and the first translation unit of that target defines them once; its
+// translation units also hold the explicit instantiations of the pipelines listed in
+// certipose/detail/precompiled.hpp. Every
 // translation unit of a program must agree on CERTIPOSE_PRECOMPILED; the target sees to it.
 #pragma once
 
