@@ -60,7 +60,6 @@ triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& o
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
-#include <iterator>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -74,6 +73,7 @@ triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& o
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -246,33 +246,38 @@ inline std::string screen_off(const std::filesystem::path& path) {
     return {};
 }
 
+/// A PLY scalar type: its name (PLY has two spellings of each), bytes per value, and whether it
+/// is an integer type and a signed one.
+struct ply_type {
+    std::string_view name;
+    std::size_t bytes;
+    bool integer;
+    bool is_signed;
+};
+
+/// The type named `t`, or null when PLY has no such type.
+inline const ply_type* find_ply_type(std::string_view t) {
+    static constexpr ply_type types[] = {
+        {"char", 1, true, true},    {"uchar", 1, true, false},  {"short", 2, true, true},    {"ushort", 2, true, false},
+        {"int", 4, true, true},     {"uint", 4, true, false},   {"float", 4, false, true},   {"double", 8, false, true},
+        {"int8", 1, true, true},    {"uint8", 1, true, false},  {"int16", 2, true, true},    {"uint16", 2, true, false},
+        {"int32", 4, true, true},   {"uint32", 4, true, false}, {"float32", 4, false, true}, {"float64", 8, false, true}};
+    for (const auto& type : types)
+        if (type.name == t) return &type;
+    return nullptr;
+}
+
 /// One element of a PLY header: its name, count and properties (a list property has a count
 /// type; a scalar one only `type`).
 struct ply_property {
-    std::string type;
-    std::string count_type;  // empty: a scalar property
+    const ply_type* type = nullptr;
+    const ply_type* count_type = nullptr;  // null: a scalar property
 };
 struct ply_element {
     std::string name;
     std::uint64_t count = 0;
     std::vector<ply_property> properties;
 };
-
-/// Bytes of one value of a PLY type (the header screen admits only these names).
-inline std::size_t ply_type_size(const std::string& t) {
-    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
-    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-    if (t == "double" || t == "float64") return 8;
-    return 4;
-}
-
-inline bool ply_integer_type(const std::string& t) {
-    return t != "float" && t != "float32" && t != "double" && t != "float64";
-}
-
-inline bool ply_signed_type(const std::string& t) {
-    return t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
-}
 
 /// Reads a binary file's bytes in blocks, for the body screen (one read per block, not per value).
 class ply_bytes {
@@ -324,7 +329,7 @@ inline std::string screen_ply_body(std::istream& in, const std::string& format,
             for (std::uint64_t r = 0; r < e.count; ++r)
                 for (const auto& p : e.properties) {
                     if (!(in >> token)) return where(e, r) + "is cut short: the file ends";
-                    if (p.count_type.empty()) continue;
+                    if (!p.count_type) continue;
                     std::uint64_t n = 0;
                     const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), n);
                     if (ec != std::errc{} || end != token.data() + token.size())
@@ -343,22 +348,22 @@ inline std::string screen_ply_body(std::istream& in, const std::string& format,
         if (e.properties.empty()) continue;
         for (std::uint64_t r = 0; r < e.count; ++r)
             for (const auto& p : e.properties) {
-                if (p.count_type.empty()) {
-                    const std::size_t size = ply_type_size(p.type);
+                if (!p.count_type) {
+                    const std::size_t size = p.type->bytes;
                     if (size > left || !bytes.skip(size)) return where(e, r) + "is cut short: the file ends";
                     left -= size;
                     continue;
                 }
-                const std::size_t size = ply_type_size(p.count_type);
+                const std::size_t size = p.count_type->bytes;
                 unsigned char raw[8] = {};
                 if (size > left || !bytes.take(raw, size)) return where(e, r) + "is cut short: the file ends";
                 left -= size;
                 if (big) std::reverse(raw, raw + size);
                 std::uint64_t n = 0;
                 for (std::size_t k = size; k-- > 0;) n = (n << 8) | raw[k];
-                if (ply_signed_type(p.count_type) && (raw[size - 1] & 0x80))
+                if (p.count_type->is_signed && (raw[size - 1] & 0x80))
                     return where(e, r) + "has a negative list count";
-                const std::uint64_t item = ply_type_size(p.type);
+                const std::uint64_t item = p.type->bytes;
                 if (n > left / item)
                     return where(e, r) + "lists " + std::to_string(n) + " items of " + std::to_string(item) +
                            " bytes; only " + std::to_string(left) + " bytes are left";
@@ -385,11 +390,6 @@ inline std::string screen_ply(const std::filesystem::path& path) {
     std::string format;
     std::vector<ply_element> elements;
     std::size_t line_no = 0;
-    const auto is_type = [](const std::string& t) {
-        static const char* types[] = {"char",  "uchar", "short",  "ushort",  "int",     "uint",   "float",  "double",
-                                      "int8",  "uint8", "int16",  "uint16",  "int32",   "uint32", "float32", "float64"};
-        return std::find(std::begin(types), std::end(types), t) != std::end(types);
-    };
     while (std::getline(in, line) && line_no < 10000) {
         ++line_no;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -430,13 +430,14 @@ inline std::string screen_ply(const std::filesystem::path& path) {
         }
         if (w[0] == "property") {
             if (elements.empty()) return bad("a property before any element");
-            if (w.size() == 3 && is_type(w[1])) {
-                elements.back().properties.push_back({w[1], {}});
+            if (const ply_type* type = w.size() == 3 ? find_ply_type(w[1]) : nullptr) {
+                elements.back().properties.push_back({type, nullptr});
                 continue;
             }
-            if (w.size() == 5 && w[1] == "list" && is_type(w[2]) && is_type(w[3])) {
-                if (!ply_integer_type(w[2])) return bad("list count type '" + w[2] + "' is not an integer type");
-                elements.back().properties.push_back({w[3], w[2]});
+            const ply_type* count = w.size() == 5 && w[1] == "list" ? find_ply_type(w[2]) : nullptr;
+            if (const ply_type* item = count ? find_ply_type(w[3]) : nullptr) {
+                if (!count->integer) return bad("list count type '" + w[2] + "' is not an integer type");
+                elements.back().properties.push_back({item, count});
                 continue;
             }
             return bad("expected 'property TYPE NAME' or 'property list TYPE TYPE NAME'");
