@@ -118,7 +118,8 @@ struct position_separator {
     double min_piece;
     position_stage_counters* count;
     shadow_cache<I> cache{};
-    std::vector<std::size_t> found_{};  // the triangles one walk names (kept: no allocation per walk)
+    std::vector<std::size_t> found_{};  // the triangles one walk names, and their shadows
+    shadow_list<I> named_{};            // (kept: no allocation per walk)
 
     verdict separate(box& b, state& s, piece_sink<box, state>& sink) {
         const bool leaf = !bisector.choose(b).has_value();
@@ -151,18 +152,9 @@ struct position_separator {
                     if (leaf) s.why = undecided_constraint<I>(*set, b);
                     if (leaf && options.leaf_corner_boxes && s.rest < options.corner_depth &&
                         see(b, s, false) != visibility::occluded && (s.visible || s.shadows))
-                        while (s.rest < options.corner_depth && stair_worth(b, s)) {
-                            auto inner = corner_box(b, [&](const box& q) {
-                                return set->test(q) == verdict::satisfied && (s.visible || outside(*s.shadows, q));
-                            }, 6);
-                            if (!inner) break;
-                            split_off(b, std::move(*inner), s, sink);
-                            // b is now one of the rest, decided here as the others will be
-                            if (is_empty(b)) return verdict::violated;  // nothing left
-                            const bool sees = s.visible || (s.shadows && outside(*s.shadows, b));
-                            if (set->test(b) == verdict::satisfied && sees) return verdict::satisfied;
-                            s.why = undecided_constraint<I>(*set, b);
-                        }
+                        return staircase(b, s, sink, [&](const box& q) {
+                            return set->test(q) == verdict::satisfied && (s.visible || outside(*s.shadows, q));
+                        }, [&] { s.why = undecided_constraint<I>(*set, b); });
                     return verdict::undecided;
                 }
             }
@@ -178,13 +170,7 @@ struct position_separator {
         if (!(blocked == b))
             count->occlusion_pieces += carve(b, blocked, min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
         if (leaf && options.leaf_corner_boxes)
-            while (s.rest < options.corner_depth && stair_worth(b, s)) {
-                auto inner = corner_box(b, [&](const box& q) { return outside(*s.shadows, q); }, 6);
-                if (!inner) break;
-                split_off(b, std::move(*inner), s, sink);
-                if (is_empty(b)) return verdict::violated;  // nothing left
-                if (outside(*s.shadows, b)) return verdict::satisfied;
-            }
+            return staircase(b, s, sink, [&](const box& q) { return outside(*s.shadows, q); }, [] {});
         return verdict::undecided;
     }
 
@@ -221,19 +207,12 @@ private:
                     };
                     ++count->shadow_walks;
                     if (occlusion->blockers(b, facet, note)) {
+                        named_.clear();
+                        for (const std::size_t triangle : found_)
+                            named_.push_back(&cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
                         auto list = std::make_shared<shadow_list<I>>();
-                        box reach = box::empty();
                         bool covered = false;
-                        for (const std::size_t triangle : found_) {
-                            const auto& sh = cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); });
-                            const rounding_guard<I> rounding;
-                            box t = b;
-                            contract_shadow(t, sh);
-                            if (is_empty(t)) continue;
-                            list->push_back(&sh);
-                            covered = covered || t == b;
-                            reach = hull(reach, t);
-                        }
+                        const box reach = reach_in(b, named_, *list, covered);
                         if (list->empty()) {
                             s.visible = true;
                             return visibility::visible;
@@ -257,22 +236,38 @@ private:
         return seen;
     }
 
+    /// Calls visit(shadow, part) for each shadow of `list` that reaches b, with `part` what it
+    /// reaches of b (b contracted to the shadow), until visit returns false.
+    template <class Visit>
+    static void for_each_reaching(const box& b, const shadow_list<I>& list, Visit&& visit) {
+        const rounding_guard<I> rounding;
+        for (const auto* sh : list) {
+            box part = b;
+            contract_shadow(part, *sh);
+            if (!is_empty(part) && !visit(sh, part)) return;
+        }
+    }
+
+    /// The hull of the parts of b that the shadows of `list` may reach (empty: none does); the
+    /// shadows that reach b are appended to `kept`, and `covered` says whether one reaches all of b.
+    static box reach_in(const box& b, const shadow_list<I>& list, shadow_list<I>& kept, bool& covered) {
+        box reach = box::empty();
+        for_each_reaching(b, list, [&](const prepared_shadow<I>* sh, const box& part) {
+            kept.push_back(sh);
+            reach = hull(reach, part);
+            covered = covered || part == b;
+            return true;
+        });
+        return reach;
+    }
+
     /// The hull of the parts of b that the state's shadows may reach (empty: b sees the facet);
     /// `covered`: one of them reaches all of b. Drops the shadows that miss b when that leaves
     /// at most half of them: the boxes inside b then contract against fewer (the list is
     /// shared with other boxes, so it is copied).
     static box shadow_hull(const box& b, state& s, bool& covered) {
-        const rounding_guard<I> rounding;
-        box reach = box::empty();
         shadow_list<I> kept;
-        for (const auto* sh : *s.shadows) {
-            box t = b;
-            contract_shadow(t, *sh);
-            if (is_empty(t)) continue;
-            kept.push_back(sh);
-            reach = hull(reach, t);
-            covered = covered || t == b;
-        }
+        const box reach = reach_in(b, *s.shadows, kept, covered);
         if (!kept.empty() && 2 * kept.size() <= s.shadows->size())
             s.shadows = std::make_shared<const shadow_list<I>>(std::move(kept));
         return reach;
@@ -309,13 +304,26 @@ private:
 
     /// No point of q lies in a shadow of the list.
     static bool outside(const shadow_list<I>& list, const box& q) {
-        const rounding_guard<I> rounding;
-        for (const auto* sh : list) {
-            box t = q;
-            contract_shadow(t, *sh);
-            if (!is_empty(t)) return false;
+        bool none = true;
+        for_each_reaching(q, list, [&](const prepared_shadow<I>*, const box&) { return none = false; });
+        return none;
+    }
+
+    /// A leaf's corner staircase: while another step is worth it, the largest box `certified`
+    /// from a corner of b (solver/detail/carving.hpp, corner_box) is VALID and b becomes one of
+    /// the rest (split_off), decided here as the others will be: by `certified` whole, else
+    /// undecided (`undecided` updates the state's reason).
+    template <class Certified, class Undecided>
+    verdict staircase(box& b, state& s, piece_sink<box, state>& sink, Certified&& certified, Undecided&& undecided) {
+        while (s.rest < options.corner_depth && stair_worth(b, s)) {
+            auto inner = corner_box(b, certified, 6);
+            if (!inner) break;
+            split_off(b, std::move(*inner), s, sink);
+            if (is_empty(b)) return verdict::violated;  // nothing left
+            if (certified(b)) return verdict::satisfied;
+            undecided();
         }
-        return true;
+        return verdict::undecided;
     }
 
     /// `inner` (certified) is VALID; the rest of b, at most six boxes, is BOUNDARY: all but one
