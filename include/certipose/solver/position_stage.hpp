@@ -288,7 +288,7 @@ private:
     /// its subtree, but where it fails it costs ~15 tree walks. The paper (no occlusion cuts)
     /// asks for every box the bisector splits. With the cuts, most such boxes are a little
     /// wider than ε_p, with halves that are leaves: pruning them saves two cheap tests, and
-    /// on every 20th facet of the four reference parts the proof succeeded for 3–17 % of them.
+    /// on every 20th facet of the four reference parts the proof succeeded for 2.5–13 % of them.
     /// Asking only boxes whose halves would be split again took 8–24 % off the run for
     /// 0.2–2.2 % more BOUNDARY boxes and the same VALID ones.
     bool prove_occluded(const box& b, bool leaf) {  // not const: a bisector may count its choices (round_robin)
