@@ -406,7 +406,6 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
         for (auto& st : states) st.rest = 0;
         paver_options again = options;
         if (refine->deadline && (!again.deadline || *refine->deadline < *again.deadline)) again.deadline = refine->deadline;
-        again.max_boxes = options.max_boxes > out.boxes.stats.boxes ? options.max_boxes - out.boxes.stats.boxes : 1;
         again.record_tree = false;
         // Refined leaves give one corner box each: the refinement itself is the staircase, and
         // deeper ones multiply the small boxes the orientation stage must still get through
@@ -414,38 +413,80 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
         // with one, 24 % with two).
         position_stage_options fine_stage = stage;
         fine_stage.corner_depth = 1;
-        separator fine{&set, Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set}), &occlusion, facet_index,
-                       Bisector(refine->min_width), fine_stage, stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10,
-                       &out.counters};
-        paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(identity{}, std::move(fine),
-                                                                                     Bisector(refine->min_width), again);
-        auto more = q.run_from(out.boxes.boundary, states, stop);
-        const auto now = std::chrono::steady_clock::now();
-        out.refinement_stopped = more.stats.reason == termination::deadline && refine->deadline && now >= *refine->deadline &&
-                                 !(options.deadline && now >= *options.deadline);
         auto& st = out.boxes.stats;
-        st.boxes += more.stats.boxes, st.bisections += more.stats.bisections, st.inner_tests += more.stats.inner_tests;
-        st.valid += more.stats.valid, st.valid_volume += more.stats.valid_volume;
-        st.discarded += more.stats.discarded, st.discarded_volume += more.stats.discarded_volume;
-        st.boundary = more.stats.boundary, st.boundary_volume = more.stats.boundary_volume;
-        st.peak_pending = std::max(st.peak_pending, more.stats.peak_pending);
-        if (!out.refinement_stopped) st.reason = more.stats.reason;
-        for (auto& v : more.valid) out.boxes.valid.push_back(std::move(v));
-        out.boxes.boundary = std::move(more.boundary);
-        states = q.boundary_states();
-        if (out.refinement_stopped) {
-            // Not refined yet, but decided as far as the paving at ε_p went: BOUNDARY, for the
-            // reason the set gives.
-            for (auto& b : more.pending) {
-                st.boundary_volume += detail::paving_volume(b);
-                out.boxes.boundary.push_back(std::move(b));
-                states.emplace_back();
+        // Two passes: first the boxes the constraint set left undecided, then those it certified
+        // and occlusion left PARTIAL. Most of the second kind's volume is truly occluded (on
+        // the reference cases the sampler finds a true valid position in a twentieth to a
+        // tenth of what the first kind holds, for more boxes), and refining it first, by volume
+        // alone, spent half the budget where few VALID boxes come from.
+        std::vector<position_box<I>> later;
+        std::vector<typename separator::state> later_states;
+        {
+            std::vector<position_box<I>> first;
+            std::vector<typename separator::state> first_states;
+            for (std::size_t i = 0; i < states.size(); ++i) {
+                (states[i].certified ? later : first).push_back(std::move(out.boxes.boundary[i]));
+                (states[i].certified ? later_states : first_states).push_back(std::move(states[i]));
             }
-            st.boundary = out.boxes.boundary.size();
-        } else {
-            out.boxes.pending = std::move(more.pending);
-            st.pending = more.stats.pending, st.pending_volume = more.stats.pending_volume;
+            out.boxes.boundary = std::move(first);
+            states = std::move(first_states);
         }
+        std::vector<position_box<I>> refined;  // BOUNDARY boxes of the passes that ran
+        std::vector<typename separator::state> refined_states;
+        for (int pass = 0; pass < 2; ++pass) {
+            if (pass == 1) {
+                if (st.reason != termination::completed) break;
+                // The first pass's occlusion-only boxes join the second; its set-undecided
+                // ones are at the refinement's width already.
+                for (std::size_t i = 0; i < out.boxes.boundary.size(); ++i) {
+                    (states[i].certified ? later : refined).push_back(std::move(out.boxes.boundary[i]));
+                    (states[i].certified ? later_states : refined_states).push_back(std::move(states[i]));
+                }
+                out.boxes.boundary = std::move(later);
+                states = std::move(later_states);
+                later.clear(), later_states.clear();
+            }
+            if (out.boxes.boundary.empty()) continue;
+            again.max_boxes = options.max_boxes > st.boxes ? options.max_boxes - st.boxes : 1;
+            separator fine{&set, Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set}), &occlusion,
+                           facet_index, Bisector(refine->min_width), fine_stage,
+                           stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters};
+            paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(
+                identity{}, std::move(fine), Bisector(refine->min_width), again);
+            auto more = q.run_from(out.boxes.boundary, states, stop);
+            const auto now = std::chrono::steady_clock::now();
+            out.refinement_stopped = more.stats.reason == termination::deadline && refine->deadline &&
+                                     now >= *refine->deadline && !(options.deadline && now >= *options.deadline);
+            st.boxes += more.stats.boxes, st.bisections += more.stats.bisections, st.inner_tests += more.stats.inner_tests;
+            st.valid += more.stats.valid, st.valid_volume += more.stats.valid_volume;
+            st.discarded += more.stats.discarded, st.discarded_volume += more.stats.discarded_volume;
+            st.peak_pending = std::max(st.peak_pending, more.stats.peak_pending);
+            if (!out.refinement_stopped) st.reason = more.stats.reason;
+            for (auto& v : more.valid) out.boxes.valid.push_back(std::move(v));
+            out.boxes.boundary = std::move(more.boundary);
+            states = q.boundary_states();
+            if (out.refinement_stopped) {
+                // Not refined yet, but decided as far as the paving at ε_p went: BOUNDARY, for
+                // the reason the set gives.
+                for (auto& b : more.pending) {
+                    out.boxes.boundary.push_back(std::move(b));
+                    states.emplace_back();
+                }
+            } else {
+                out.boxes.pending = std::move(more.pending);
+                st.pending = more.stats.pending, st.pending_volume = more.stats.pending_volume;
+            }
+            if (st.reason != termination::completed || out.refinement_stopped) break;
+        }
+        // What no pass reached (a stopped first pass leaves the second kind as it was), then
+        // what the passes left.
+        for (std::size_t i = 0; i < later.size(); ++i)
+            out.boxes.boundary.push_back(std::move(later[i])), states.push_back(std::move(later_states[i]));
+        for (std::size_t i = 0; i < refined.size(); ++i)
+            out.boxes.boundary.push_back(std::move(refined[i])), states.push_back(std::move(refined_states[i]));
+        st.boundary = out.boxes.boundary.size();
+        st.boundary_volume = 0;
+        for (const auto& b : out.boxes.boundary) st.boundary_volume += detail::paving_volume(b);
     }
     // A BOUNDARY box was separated just before the bisector declined it: undecided by the set
     // (which constraint, if it says: one more test), or certified by it and PARTIAL for occlusion.
