@@ -415,10 +415,11 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
         fine_stage.corner_depth = 1;
         auto& st = out.boxes.stats;
         // Two passes: first the boxes the constraint set left undecided, then those it certified
-        // and occlusion left PARTIAL. Most of the second kind's volume is truly occluded (on
-        // the reference cases the sampler finds a true valid position in a twentieth to a
-        // tenth of what the first kind holds, for more boxes), and refining it first, by volume
-        // alone, spent half the budget where few VALID boxes come from.
+        // and occlusion left PARTIAL. By volume alone, most of a 1 s budget went to the second
+        // kind (more boxes, of which an OCCLUDED proof rarely prunes any), where much of the
+        // volume is truly occluded; first pass first raised the certified share on
+        // idler_riser / featuretype / angle_block from 81.1 / 68.4 / 63.9 % to 82.2 / 69.5 /
+        // 68.4 % (3 000 sampled true positions; bench_completeness measures the same).
         std::vector<position_box<I>> later;
         std::vector<typename separator::state> later_states;
         {
