@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <random>
 #include <vector>
@@ -193,4 +194,99 @@ TEST_CASE("merges and growth keep to what the certifier accepts") {
     std::vector<pose> nested{seed, g};
     certipose::detail::growth::drop_contained(nested);
     CHECK(nested.size() == 1);
+}
+
+TEST_CASE("growth certifies the slab a face adds, and the slab and the box before make the box after") {
+    using pose = certipose::pose_box<I>;
+    const pose b{box3::from_bounds({{{0, 1}, {2, 3}, {4, 5}}}), box3::from_bounds({{{-0.1, 0.1}, {0.5, 0.6}, {0, 0.1}}})};
+    for (std::size_t k = 0; k < 6; ++k)
+        for (int side = 0; side < 2; ++side) {
+            pose cand;
+            REQUIRE(certipose::detail::growth::moved(b, k, side, 0.25, cand));
+            const pose slab = certipose::detail::growth::added_slab(b, cand, k, side);
+            for (std::size_t j = 0; j < 6; ++j) {
+                const I& s = certipose::detail::growth::component(slab, j);
+                const I& o = certipose::detail::growth::component(b, j);
+                const I& c = certipose::detail::growth::component(cand, j);
+                if (j != k) {
+                    CHECK(s == o);
+                    continue;
+                }
+                // Touching the old face and reaching the new one: old ∪ slab = cand, no gap.
+                CHECK(certipose::hull(s, o) == c);
+                CHECK((side == 0 ? upper(s) == lower(o) : lower(s) == upper(o)));
+            }
+        }
+    // Where only thin boxes are certified (every position width ≤ 0.3), the box still grows:
+    // each certified slab is thin, the box they add up to is not.
+    const auto thin = [](const pose& p) {
+        for (int k = 0; k < 3; ++k)
+            if (upper(p.position[k]) - lower(p.position[k]) > 0.3) return false;
+        return true;
+    };
+    const pose seed{box3::from_bounds({{{0, 0.1}, {0, 0.1}, {0, 0.1}}}), box3::from_bounds({{{0, 0.1}, {0, 0.1}, {0, 0.1}}})};
+    const pose g = certipose::detail::growth::grow(seed, thin, {0.05, 0.05, 0.05, 0.05, 0.05, 0.05}, 400);
+    CHECK(upper(g.position[0]) - lower(g.position[0]) > 0.5);
+}
+
+TEST_CASE("dropping contained boxes keeps what comparing every pair keeps") {
+    using pose = certipose::pose_box<I>;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<pose> boxes;
+    const auto random_box = [&](double size) {
+        std::array<std::pair<double, double>, 3> p{}, o{};
+        for (int k = 0; k < 3; ++k) {
+            const double lo = u(rng) * 2, w = size * (0.2 + u(rng));
+            p[k] = {lo, lo + w};
+            const double a = u(rng);
+            o[k] = {a, a + 0.5 * u(rng)};
+        }
+        return pose{box3::from_bounds(p), box3::from_bounds(o)};
+    };
+    // Small boxes, a few large ones (some spanning many cells of the grid), and boxes inside
+    // others: shrunk copies, exact duplicates.
+    for (int i = 0; i < 400; ++i) boxes.push_back(random_box(0.05));
+    for (int i = 0; i < 12; ++i) boxes.push_back(random_box(1.5));
+    for (int i = 0; i < 200; ++i) {
+        pose b = boxes[static_cast<std::size_t>(u(rng) * 412)];
+        if (i % 3 != 0)
+            for (std::size_t k = 0; k < 6; ++k) {
+                I& c = certipose::detail::growth::component(b, k);
+                const double w = upper(c) - lower(c);
+                c = I(lower(c) + 0.25 * w * u(rng), upper(c) - 0.25 * w * u(rng));
+            }
+        boxes.push_back(b);
+    }
+    // The reference: every box against every box kept before it, largest first.
+    std::vector<pose> sorted = boxes;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const pose& a, const pose& b) { return certipose::volume(a) > certipose::volume(b); });
+    std::vector<pose> expected;
+    for (const auto& b : sorted) {
+        bool in = false;
+        for (const auto& k : expected) {
+            bool all = true;
+            for (std::size_t j = 0; j < 6 && all; ++j)
+                all = certipose::subset(certipose::detail::growth::component(b, j), certipose::detail::growth::component(k, j));
+            if (all) { in = true; break; }
+        }
+        if (!in) expected.push_back(b);
+    }
+    certipose::detail::growth::drop_contained(boxes);
+    CHECK(boxes.size() < 612);  // something was dropped
+    REQUIRE(boxes.size() == expected.size());
+    const auto key = [](const pose& p) {
+        std::array<double, 12> k{};
+        for (std::size_t j = 0; j < 6; ++j) {
+            k[2 * j] = lower(certipose::detail::growth::component(p, j));
+            k[2 * j + 1] = upper(certipose::detail::growth::component(p, j));
+        }
+        return k;
+    };
+    std::vector<std::array<double, 12>> got, want;
+    for (const auto& b : boxes) got.push_back(key(b));
+    for (const auto& b : expected) want.push_back(key(b));
+    std::sort(got.begin(), got.end());
+    std::sort(want.begin(), want.end());
+    CHECK(got == want);
 }

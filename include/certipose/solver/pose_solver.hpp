@@ -421,12 +421,12 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             if (b.cls == box_class::valid) valid.push_back(b.box);
             else rest.push_back(std::move(b));
         }
-        st.merges = detail::growth::merge_touching(valid, [&](const position_box<I>& p, const orientation_box<I>& e) {
-            return ok.fov(p, e);
-        });
+        const auto out_of_time = [&] { return options.stop.stop_requested() || (deadline && clock::now() >= *deadline); };
+        st.merges = detail::growth::merge_touching(
+            valid, [&](const position_box<I>& p, const orientation_box<I>& e) { return ok.fov(p, e); }, out_of_time);
         const auto finest = detail::finest_steps(*options.grow, options.position_eps, options.orientation_eps);
         for (auto& b : valid) {
-            if (options.stop.stop_requested() || (deadline && clock::now() >= *deadline)) break;
+            if (out_of_time()) break;
             const pose_box<I> g = detail::growth::grow(b, ok, finest, options.grow->max_certifications);
             if (!(g == b)) ++st.grown, b = g;
         }
