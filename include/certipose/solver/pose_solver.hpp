@@ -240,7 +240,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
         if (options.refine->time_limit)
             refine_deadline = start + *options.refine->time_limit;
         else if (options.time_limit)
-            refine_deadline = start + *options.time_limit / 2;
+            refine_deadline = start + *options.time_limit / 4;  // see refinement::time_limit
     }
     paver_options popt;
     popt.max_boxes = options.max_boxes;
