@@ -214,7 +214,7 @@ std::vector<std::array<double, 6>> sorted_boxes(const std::vector<position_box<b
 
 TEST_CASE("the position stage's shortcuts change no VALID box") {
     // Boxes inside a set-certified box skip the set, and boxes the bisector will not split skip
-    // the OCCLUDED search: neither may change what is VALID. Compared with full effort
+    // the OCCLUDED search (the refinement skips it everywhere): none may change what is VALID. Compared with full effort
     // everywhere, and with a breadth-first buffer (which breaks the chain of certified
     // ancestors far more often than depth-first). The position stage alone: a whole pipeline
     // per variant would cost a minute of compile time each.
@@ -242,5 +242,14 @@ TEST_CASE("the position stage's shortcuts change no VALID box") {
         };
         CHECK(a.boxes.boundary.size() - b.boxes.boundary.size() == std::size_t(occluded_reasons(a) - occluded_reasons(b)));
         CHECK(sorted_boxes(a.boxes.boundary) == sorted_boxes(c.boxes.boundary));
+        // Without OCCLUDED proofs (as the refinement paves): what a proof pruned is bisected and
+        // left BOUNDARY instead, and nothing else changes.
+        position_stage_options no_proofs;
+        no_proofs.occluded_proofs = false;
+        const auto d = pave_positions<I, set>(problem, f, fast, {}, 0.1, {}, {}, no_proofs);
+        REQUIRE(d.boxes.stats.reason == termination::completed);
+        CHECK(sorted_boxes(a.boxes.valid) == sorted_boxes(d.boxes.valid));
+        CHECK(d.boxes.boundary.size() >= a.boxes.boundary.size());
+        CHECK(d.counters.occlusion_tests <= a.counters.occlusion_tests);
     }
 }
