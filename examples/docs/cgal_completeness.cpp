@@ -27,9 +27,12 @@ int main() {
     // Fewer, larger boxes: merge neighbours, then move every face out while certified.
     certipose::solve_options wide{.position_eps = 0.1, .orientation_eps = 0.38};
     wide.grow = certipose::growth_options{};
+    // The most complete answer in 1 s: refine, orient, then widen with what time is left.
+    certipose::solve_options most = anytime;
+    most.grow = certipose::growth_options{};
 
     for (const auto& [name, options] : {std::pair{"paper", paper}, std::pair{"carving", carving},
-                                        std::pair{"anytime", anytime}, std::pair{"wide", wide}}) {
+                                        std::pair{"anytime", anytime}, std::pair{"wide", wide}, std::pair{"most", most}}) {
         const auto r = solver.solve(facet, options);
         std::printf("%-8s %5zu VALID %6zu BOUNDARY  certified %.4f m^3 of positions in %.3f s\n", name, r.stats.valid,
                     r.stats.boundary, r.stats.valid_volume, r.stats.seconds);

@@ -61,7 +61,7 @@ struct refinement {
     /// solve_options::time_limit when that is set, else no time limit (the box budget and
     /// min_width still end it). A quarter, not a half: refined position boxes are many and
     /// small, and orienting them is what a deadline cut short on the reference cases (at 1 s,
-    /// plate_holes certified 23 % of its true positions with half, 88 % with a quarter).
+    /// plate_holes certified 23-31 % of its true positions with half, 88 % with a quarter).
     std::optional<std::chrono::steady_clock::duration> time_limit{};
 
     void validate(double position_eps) const {

@@ -5,7 +5,8 @@
 // (pose_solver::certify), so every box it returns is a union of certified boxes: soundness
 // does not depend on how the search moves, only on that question. The search is greedy: a face
 // moves out by a step that doubles while the slab it adds is certified and then halves down to
-// the finest step, face after face (the box before the move was certified, so box ∪ slab is); a box around a pose first grows all its half-widths together, in the
+// the finest step, face after face (the box before the move is a union of certified boxes, so
+// box ∪ slab is too); a box around a pose first grows all its half-widths together, in the
 // proportions of a reference box, then each on its own. Boxes that share a whole position face
 // merge without a new proof: the hull of the two position boxes is their union, and every pose
 // of it with an orientation in both orientation boxes lies in one of the two certified boxes.
@@ -298,7 +299,11 @@ void drop_contained(std::vector<pose_box<I>>& boxes) {
     std::nth_element(widest.begin(), p90, widest.end());
     const double cell = *p90 > 0 && std::isfinite(*p90) ? *p90 : 1.0;
     using cell_key = std::array<long long, 3>;
-    const auto index = [cell](double x) { return static_cast<long long>(std::floor(x / cell)); };
+    // Clamped, so that no coordinate overflows the cast; the clamp is monotone, so a box that
+    // contains b still spans the index of b's centre.
+    const auto index = [cell](double x) {
+        return static_cast<long long>(std::clamp(std::floor(x / cell), -1e15, 1e15));
+    };
     std::map<cell_key, std::vector<std::size_t>> grid;  // cell -> kept boxes overlapping it
     std::vector<std::size_t> spanning;                  // kept boxes over too many cells
     std::vector<pose_box<I>> kept;
