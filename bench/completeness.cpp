@@ -10,8 +10,8 @@
 // off by in every direction), reported with the Euler-angle widths of that box.
 //
 //   bench_completeness [samples=6000] [modes=paper,inner,full,refine,grow,refine_grow] [every=0]
-//   (also: cuts, leaf, depth1 — one corner box per leaf — and refine_grow: refinement and
-//   growth in one 1 s budget, the most complete answer a second gives)
+//   (also: cuts, leaf, depth1 — one corner box per leaf). refine_grow: refinement and growth
+//   in one 1 s budget, the most complete answer a second gives.
 // With `every` = N > 0, no table: each part's every Nth facet is solved once per mode, and the
 // totals (seconds, VALID / BOUNDARY boxes, certified volume) are printed — a broader check that
 // a change to the solver keeps its VALID boxes and what it costs, beyond the four facets.

@@ -229,6 +229,9 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     std::optional<clock::time_point> deadline;
     if (options.time_limit) deadline = start + *options.time_limit;
     const auto seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+    // Cancelled or past the deadline: the orientation groups and growth stop on it (the
+    // orientation loop below tells the two apart for solve_stats::reason).
+    const auto out_of_time = [&] { return options.stop.stop_requested() || (deadline && clock::now() >= *deadline); };
 
     // ---- stage 1: positions -----------------------------------------------------------------
     // With refinement the stage paves at ε_p, then refines its BOUNDARY boxes down to the
@@ -325,8 +328,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
         // their neighbours even when the whole cell does not.
         constexpr std::size_t min_group = 4;
         const auto orient_group = [&](auto& self, std::span<std::size_t> members) -> void {
-            if (members.size() < 2 || !past_paper || halted || options.stop.stop_requested() ||
-                (deadline && clock::now() >= *deadline)) {
+            if (members.size() < 2 || !past_paper || halted || out_of_time()) {
                 for (std::size_t i : members) todo.push_back(valid[i]);
                 return;
             }
@@ -421,7 +423,6 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             if (b.cls == box_class::valid) valid.push_back(b.box);
             else rest.push_back(std::move(b));
         }
-        const auto out_of_time = [&] { return options.stop.stop_requested() || (deadline && clock::now() >= *deadline); };
         st.merges = detail::growth::merge_touching(
             valid, [&](const position_box<I>& p, const orientation_box<I>& e) { return ok.fov(p, e); }, out_of_time);
         const auto finest = detail::finest_steps(*options.grow, options.position_eps, options.orientation_eps);

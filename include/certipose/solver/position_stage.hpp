@@ -458,9 +458,9 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
         }
         for (int pass = 0; pass < 2; ++pass) {
             if (pass == 1) {
-                if (st.reason != termination::completed) break;
-                // The first pass's occlusion-only boxes join the second; its set-undecided
-                // ones are at the refinement's width already.
+                // Reached only when pass 0 completed or had nothing to refine (the end of the
+                // loop breaks otherwise). The first pass's occlusion-only boxes join the
+                // second; its set-undecided ones are at the refinement's width already.
                 sort_out(later, refined);
                 append(later);
             }
