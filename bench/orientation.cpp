@@ -147,6 +147,43 @@ void BM_paper_orientation_random_boxes(benchmark::State& state) {
 }
 BENCHMARK(BM_paper_orientation_random_boxes);
 
+/// The eight octants of the 5 cm box one after the other, as the small boxes of one cell of ε_p
+/// reach the orientation stage: arg 0 searches each from scratch, arg 1 carries a
+/// paper_orientation::hint from box to box (what pose_solver does per cell). Time per octant.
+void BM_paper_orientation_octants(benchmark::State& state) {
+    const auto cam = camera();
+    const auto whole = position5cm();
+    std::vector<certipose::position_box<I>> octants;
+    for (std::size_t k = 0; k < 8; ++k) {
+        certipose::position_box<I> q;
+        for (std::size_t d = 0; d < 3; ++d) {
+            const double m = certipose::mid(whole[d]);
+            q[d] = (k >> d) & 1 ? I(m, certipose::upper(whole[d])) : I(certipose::lower(whole[d]), m);
+        }
+        octants.push_back(q);
+    }
+    const certipose::paper_orientation policy;
+    const bool hinted = state.range(0) != 0;
+    std::size_t certifications = 0, certified = 0, calls = 0;
+    double phi = 0;
+    for (auto _ : state) {
+        certipose::paper_orientation::hint hint;
+        for (const auto& p : octants) {
+            const auto r = hinted ? policy.orient(p, facet3cm, cam, 0.38, hint) : policy.orient(p, facet3cm, cam, 0.38);
+            certifications += r.certifications;
+            certified += !r.boxes.empty();
+            if (!r.boxes.empty()) phi += certipose::width(r.boxes[0][0]);
+            ++calls;
+            benchmark::DoNotOptimize(r);
+        }
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(calls));
+    state.counters["certifications_per_box"] = static_cast<double>(certifications) / static_cast<double>(calls);
+    state.counters["certified_fraction"] = static_cast<double>(certified) / static_cast<double>(calls);
+    state.counters["mean_phi_width"] = certified ? phi / static_cast<double>(certified) : 0.0;
+}
+BENCHMARK(BM_paper_orientation_octants)->Arg(0)->Arg(1);
+
 void BM_paving_orientation_per_position_box(benchmark::State& state) {
     per_position_box<certipose::paving_orientation>(state);
 }

@@ -17,6 +17,8 @@
 // asked again — and a box that still fails at ε_p is reported BOUNDARY. BOUNDARY 6D boxes carry
 // the whole orientation range (nothing was decided about aiming there) and the reason they were
 // left undecided (`classified_box::reason`, counted in `solve_stats::boundary_reasons`).
+// An orientation policy modelling HintedOrientationPolicy (paper_orientation does) gets one hint
+// per cell of ε_p: the boxes of a cell search from what their neighbours found.
 //
 // Budgets: `max_boxes` counts boxes of both stages. When it ends the position stage, the
 // position boxes certified so far are still oriented (each once, without further bisection), so a
@@ -69,6 +71,17 @@ concept complete_occlusion_policy = complete_type<O> && OcclusionPolicy<O, I>;
 }  // namespace detail
 
 namespace detail {
+/// The hint type of an orientation policy (HintedOrientationPolicy), an empty one otherwise.
+template <class O, class I, class C>
+struct orientation_hint_of {
+    struct type {};
+};
+template <class O, class I, class C>
+    requires HintedOrientationPolicy<O, I, C>
+struct orientation_hint_of<O, I, C> {
+    using type = typename O::hint;
+};
+
 /// The finest growth steps of the six components.
 inline std::array<double, 6> finest_steps(const growth_options& o, double position_eps, double orientation_eps) {
     const double p = o.position_step > 0 ? o.position_step : position_eps / 64;
@@ -299,19 +312,33 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     bool halted = st.reason == termination::deadline || st.reason == termination::cancelled;
     std::vector<position_box<I>> todo;
     todo.reserve(stage1.boxes.valid.size());
+    using cell_key = std::array<long long, 3>;
+    const auto cell_of = [&](const position_box<I>& p) {
+        cell_key key{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            // Clamped before the cast (a far box must not overflow it); such cells are huge anyway.
+            const double c = std::floor(mid(p[k]) / options.position_eps);
+            key[k] = static_cast<long long>(std::clamp(c, -1e15, 1e15));
+        }
+        return key;
+    };
+    // The orientation search of a box, starting from what the searches in its cell of ε_p found
+    // (HintedOrientationPolicy; the hint changes how fast a box is found, not its proof).
+    std::map<cell_key, typename detail::orientation_hint_of<orientation_type, I, camera_type>::type> hints;
+    const auto orient = [&](const position_box<I>& p) {
+        if constexpr (HintedOrientationPolicy<orientation_type, I, camera_type>)
+            return orientation_.orient(p, f, camera_, options.orientation_eps, hints[cell_of(p)]);
+        else
+            return orientation_.orient(p, f, camera_, options.orientation_eps);
+    };
     {
         // Small position boxes in one cell of ε_p (pieces, corner boxes, refined leaves) are
         // oriented together first: an orientation certified over their hull holds for each
         // (constraint 5 over a position box holds over every box inside it). Cells whose hull
         // cannot be oriented are split (below) before falling back to one search per box.
-        std::map<std::array<long long, 3>, std::vector<std::size_t>> cells;
+        std::map<cell_key, std::vector<std::size_t>> cells;
         const auto& valid = stage1.boxes.valid;
-        for (std::size_t i = 0; i < valid.size(); ++i) {
-            std::array<long long, 3> key{};
-            for (std::size_t k = 0; k < 3; ++k)
-                key[k] = static_cast<long long>(std::floor(mid(valid[i][k]) / options.position_eps));
-            cells[key].push_back(i);
-        }
+        for (std::size_t i = 0; i < valid.size(); ++i) cells[cell_of(valid[i])].push_back(i);
         // Largest position volume first, in groups and one by one: a run that a deadline stops
         // in this stage (refinement hands it many small boxes) has certified the most it could.
         std::vector<std::pair<double, const std::vector<std::size_t>*>> by_volume;
@@ -335,7 +362,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             position_box<I> h = valid[members[0]];
             for (std::size_t i : members) h = hull(h, valid[i]);
             ++done;
-            const orientation_result<I> o = orientation_.orient(h, f, camera_, options.orientation_eps);
+            const orientation_result<I> o = orient(h);
             st.orientation_certifications += o.certifications;
             if (!o.boxes.empty()) {
                 ++st.orientation_groups;
@@ -388,7 +415,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             continue;
         }
         ++done;
-        const orientation_result<I> o = orientation_.orient(p, f, camera_, options.orientation_eps);
+        const orientation_result<I> o = orient(p);
         st.orientation_certifications += o.certifications;
         if (!o.boxes.empty()) {
             for (const auto& e : o.boxes) {
