@@ -392,10 +392,11 @@ public:
     const paper_orientation_options& options() const noexcept { return options_; }
 
     /// What a search found, for the search of a nearby position box (HintedOrientationPolicy):
-    /// the scale of the paper's box that certified. The next search tries that scale first and
-    /// moves up (doubling) or down (halving) from it instead of halving from 1/2: at a neighbour's
-    /// scale most boxes of a cell certify at once, where the halving spent two or three failed,
-    /// tiled certifications to get there (plate_holes, facet 7: 24 evaluations per certified box).
+    /// the scales of the paper's box that certified. The next search tries the box at those
+    /// scales around its own aim, then one step wider (×1.5), and searches only when the first
+    /// fails (halving from below the hint's scale, then the scales above it): at a neighbour's
+    /// scales most boxes of a cell certify at once, where a search of their own spent ~24
+    /// evaluations, mostly failed refinements (plate_holes, facet 7).
     struct hint {
         double scale = 0.0;       ///< of φ and γ (and β unless widened), in (0, 1]; 0: nothing known
         double beta_scale = 0.0;  ///< of β, after widening toward the paper's [β]
