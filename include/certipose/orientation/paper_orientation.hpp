@@ -460,7 +460,8 @@ public:
             // own aim: most boxes of a cell certify it at once, and searching on would mostly
             // spend failed certifications to find what it holds.
             const bool hinted = from.scale > 0.0 && from.scale <= 1.0;  // refined scales reach past 1/2
-            if (hinted && from.beta_scale >= from.scale && from.beta_scale <= 1.0) {
+            const bool first = hinted && from.beta_scale >= from.scale && from.beta_scale <= 1.0;
+            if (first) {
                 const auto b = with_beta(scaled(from.scale), from.beta_scale);
                 if (certified(b)) {
                     // One step wider: a smaller position box, or one nearer the facet's axis, may
@@ -475,7 +476,7 @@ public:
                 }
             }
             // ... else the search, from the hint's scale when there is one.
-            const bool tried = hinted && (roll_free || from.beta_scale == from.scale);  // scaled(from.scale) failed
+            const bool tried = first && (roll_free || from.beta_scale == from.scale);  // scaled(from.scale) failed
             // The smallest scale the halving would try (the first whose box is narrower than
             // ε_o): with β whole (roll-free), when even that box fails so does every wider one
             // (they contain it), and the halving would spend ~19 failed certifications to learn
@@ -516,6 +517,10 @@ public:
                         break;
                     }
                     const auto b = scaled(s);
+                    if (hinted && s == from.scale) {  // the hint's own box: it failed above
+                        if (narrow(b)) break;
+                        continue;
+                    }
                     if (certified(b)) {
                         best = b, s_ok = s, s_fail = 2 * s;
                         break;
