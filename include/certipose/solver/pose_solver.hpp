@@ -315,11 +315,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     using cell_key = std::array<long long, 3>;
     const auto cell_of = [&](const position_box<I>& p) {
         cell_key key{};
-        for (std::size_t k = 0; k < 3; ++k) {
-            // Clamped before the cast (a far box must not overflow it); such cells are huge anyway.
-            const double c = std::floor(mid(p[k]) / options.position_eps);
-            key[k] = static_cast<long long>(std::clamp(c, -1e15, 1e15));
-        }
+        for (std::size_t k = 0; k < 3; ++k) key[k] = detail::growth::cell_index(mid(p[k]), options.position_eps);
         return key;
     };
     // The orientation search of a box, starting from what the searches in its cell of ε_p found

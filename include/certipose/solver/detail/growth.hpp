@@ -266,6 +266,12 @@ std::size_t merge_touching_positions(std::vector<position_box<I>>& boxes, double
     return merges;
 }
 
+/// The index of the cell of a grid of width `cell` that holds coordinate x, clamped to ±1e15
+/// before the cast so that no coordinate overflows it (the clamp keeps the order of indices).
+inline long long cell_index(double x, double cell) {
+    return static_cast<long long>(std::clamp(std::floor(x / cell), -1e15, 1e15));
+}
+
 /// Drops boxes contained in another box of the list (keeps one of equal boxes).
 ///
 /// Largest first, each box against the boxes already kept that could contain it: a box that
@@ -299,11 +305,8 @@ void drop_contained(std::vector<pose_box<I>>& boxes) {
     std::nth_element(widest.begin(), p90, widest.end());
     const double cell = *p90 > 0 && std::isfinite(*p90) ? *p90 : 1.0;
     using cell_key = std::array<long long, 3>;
-    // Clamped, so that no coordinate overflows the cast; the clamp is monotone, so a box that
-    // contains b still spans the index of b's centre.
-    const auto index = [cell](double x) {
-        return static_cast<long long>(std::clamp(std::floor(x / cell), -1e15, 1e15));
-    };
+    // cell_index is monotone, so a box that contains b still spans the index of b's centre.
+    const auto index = [cell](double x) { return cell_index(x, cell); };
     std::map<cell_key, std::vector<std::size_t>> grid;  // cell -> kept boxes overlapping it
     std::vector<std::size_t> spanning;                  // kept boxes over too many cells
     std::vector<pose_box<I>> kept;
