@@ -275,6 +275,57 @@ TEST_CASE_TEMPLATE("certify_fov: sound on random 6D boxes (sampled poses agree w
     CHECK(samples >= 10000);
 }
 
+TEST_CASE_TEMPLATE("fov_refuted: only boxes holding a corner pose that fails, never one certify_fov proves", I,
+                   CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
+    // paper_orientation gives up on a box fov_refuted names without trying to prove it: that is
+    // only right when the box truly holds a pose that does not see the facet. Its witness is a
+    // corner of the position box at a corner (or the centre) of the orientation box.
+    const auto cam = design_camera();
+    const fov_frustum<I> frustum(cam);
+    const Eigen::Matrix3d k = cam.intrinsics();
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), u01(0.0, 1.0);
+    std::size_t refuted = 0, certified = 0, failing_not_refuted = 0;
+    for (std::size_t i = 0; i < 1500; ++i) {
+        const auto s = random_scenario<I>(rng, kind_of(i));
+        const auto aim = nominal_aim(s.position, s.f);
+        REQUIRE(aim);
+        const double w = 0.3 * u01(rng) * u01(rng), off = 0.1 * u(rng);
+        const double wb = u01(rng) < 0.3 ? pi : 0.3 * u01(rng);
+        orientation_box<I> e;
+        e[0] = I(aim->phi + off - w, aim->phi + off + w), e[1] = I(aim->gamma - off - w, aim->gamma - off + w),
+        e[2] = I(-wb, wb);
+        const bool r = fov_refuted(fov_position<I>(s.position, s.f), e, frustum);
+        // Does a corner pose fail constraint 5 (plain evaluation)?
+        bool corner_fails = false;
+        for (std::size_t t = 0; t < 9 && !corner_fails; ++t)
+            for (std::size_t c = 0; c < 8 && !corner_fails; ++c) {
+                const auto at = [&](const I& x, std::size_t bit, std::size_t of) {
+                    return of < 8 ? ((of >> bit) & 1u ? upper(x) : lower(x)) : mid(x);
+                };
+                const Eigen::Vector3d x(at(s.position[0], 0, c), at(s.position[1], 1, c), at(s.position[2], 2, c));
+                corner_fails = !fov_holds(x, at(e[0], 0, t), at(e[1], 1, t), at(e[2], 2, t), s.f, k, cam.width_px(),
+                                          cam.height_px());
+            }
+        if (r) {
+            ++refuted;
+            CHECK_MESSAGE(corner_fails, "box " << i << " refuted but every corner pose sees the facet");
+            CHECK_MESSAGE(certify_fov(s.position, e, s.f, frustum) != verdict::satisfied, "box " << i << " refuted and certified");
+        } else if (corner_fails) {
+            ++failing_not_refuted;  // within the margin, or only at a corner the check does not try
+        }
+        if (certify_fov(s.position, e, s.f, frustum) == verdict::satisfied) {
+            ++certified;
+            CHECK(!r);
+        }
+    }
+    MESSAGE("fov_refuted: " << refuted << " refuted, " << certified << " certified, " << failing_not_refuted
+                            << " with a failing corner pose not refuted, of 1500 boxes");
+    CHECK(refuted >= 200);    // not vacuous
+    CHECK(certified >= 200);
+    CHECK(failing_not_refuted <= refuted / 10);  // the worst position is found, not sampled
+}
+
 TEST_CASE_TEMPLATE("paper_orientation: every sampled pose of every certified box satisfies constraint 5", I,
                    CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
     const auto cam = design_camera();
@@ -592,6 +643,36 @@ TEST_CASE("fov_frustum: cones of the DESIGN.md camera") {
     const Eigen::Matrix3d k = cam.intrinsics();
     CHECK(contains(frustum.sides()[1].l[2], 2448 - k(0, 2)));
     CHECK(contains(frustum.sides()[3].l[1], -k(1, 1)));
+}
+
+TEST_CASE("frustum_of: one frustum per camera in a row, rebuilt when the camera changes") {
+    using I = boost_interval;
+    const auto a = design_camera();
+    const user_camera b;
+    const auto same = [](const fov_frustum<I>& x, const fov_frustum<I>& y) {
+        for (std::size_t s = 0; s < 4; ++s)
+            for (std::size_t j = 0; j < 3; ++j)
+                if (!(lower(x.sides()[s].l[j]) == lower(y.sides()[s].l[j]) && upper(x.sides()[s].l[j]) == upper(y.sides()[s].l[j])))
+                    return false;
+        return x.inner_half_angle() == y.inner_half_angle() && x.outer_half_angle() == y.outer_half_angle();
+    };
+    for (int round = 0; round < 3; ++round) {
+        CHECK(same(frustum_of<I>(a), fov_frustum<I>(a)));
+        CHECK(same(frustum_of<I>(a), fov_frustum<I>(a)));
+        CHECK(same(frustum_of<I>(b), fov_frustum<I>(b)));
+        CHECK(!same(frustum_of<I>(a), fov_frustum<I>(b)));
+    }
+    // A bad camera throws every time, and the good one after it is still right.
+    struct nan_camera : user_camera {
+        Eigen::Matrix3d intrinsics() const {
+            Eigen::Matrix3d k = user_camera::intrinsics();
+            k(0, 2) = std::numeric_limits<double>::quiet_NaN();
+            return k;
+        }
+    };
+    CHECK_THROWS_AS(frustum_of<I>(nan_camera{}), certipose::invalid_argument);
+    CHECK_THROWS_AS(frustum_of<I>(nan_camera{}), certipose::invalid_argument);
+    CHECK(same(frustum_of<I>(b), fov_frustum<I>(b)));
 }
 
 #endif  // CERTIPOSE_ORIENTATION_TYPED_ONLY

@@ -132,6 +132,27 @@ private:
     double inner_ = 0.0, outer_ = 0.0;
 };
 
+/// The frustum of `camera`, built once per thread for each camera in a row (compared by K and
+/// the image size). An orientation search asks for it on every position box, and building it
+/// (interval atan, sqrt and divisions) was 6 % of a plate_holes run. A K or size with a NaN never
+/// compares equal, so such a camera is rebuilt, and throws, every time.
+template <Interval I, CameraModel C>
+const fov_frustum<I>& frustum_of(const C& camera) {
+    struct entry {
+        Eigen::Matrix3d K;
+        double width, height;
+        fov_frustum<I> frustum;
+    };
+    thread_local std::optional<entry> last;
+    const Eigen::Matrix3d K = camera.intrinsics();
+    const double width = camera.width_px(), height = camera.height_px();
+    if (!last || !(last->K == K) || !(last->width == width) || !(last->height == height)) {
+        fov_frustum<I> built(K, width, height);  // throws before `last` changes
+        last.emplace(entry{K, width, height, std::move(built)});
+    }
+    return last->frustum;
+}
+
 namespace detail::orientation {
 
 inline void check_facet(const facet& f) {
@@ -255,6 +276,61 @@ struct fov_position {
         }
     }
 };
+
+/// A quick refutation of constraint 5 over [p] × [e]: true when, at a corner or the centre of
+/// [e] and the position of [p] worst for it, some vertex lies outside the image by a margin far
+/// above rounding. Such a box holds a pose that does not see the facet, so no proof of it can
+/// succeed: a search may give up on it without `certify_fov`, whose subdivision (tiling) spends
+/// its whole budget before failing. ℓ_k·Rᵀ(v − p) = (Rℓ_k)·(v − p) is linear in p, so its
+/// minimum over the box, (Rℓ_k)·(v − p0) − Σ_j |(Rℓ_k)_j|·r_j, is reached at a corner.
+/// Plain doubles: `true` is only ever used to give up on a box, never to certify one, so
+/// rounding could at worst cost a certification, and the margin (1e-9 of the terms' size,
+/// millions of times their rounding error) rules even that out. On plate_holes (facet 7) two
+/// thirds of the failed tiled proofs held such a corner pose, and they cost half the run.
+template <Interval I>
+bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
+    if (pos.empty || !pos.finite || is_empty(orientation) || !detail::orientation::finite_box(orientation)) return false;
+    const certipose::detail::round_to_nearest_scope nearest{};
+    // sin and cos of the lower bound, upper bound and midpoint of each angle.
+    std::array<std::array<double, 3>, 3> sn{}, cs{};
+    for (std::size_t j = 0; j < 3; ++j) {
+        const std::array<double, 3> at{lower(orientation[j]), upper(orientation[j]), mid(orientation[j])};
+        for (std::size_t t = 0; t < 3; ++t) sn[j][t] = std::sin(at[t]), cs[j][t] = std::cos(at[t]);
+    }
+    std::array<std::array<double, 3>, 4> l{};
+    for (std::size_t k = 0; k < 4; ++k)
+        for (std::size_t j = 0; j < 3; ++j) l[k][j] = mid(frustum.sides()[k].l[j]);
+    std::array<std::array<double, 3>, 3> d{};
+    std::array<double, 3> dn{};
+    for (std::size_t v = 0; v < 3; ++v) {
+        for (std::size_t j = 0; j < 3; ++j)
+            d[v][j] = pos.target.v[v][static_cast<Eigen::Index>(j)] - pos.p0[j];
+        dn[v] = std::abs(d[v][0]) + std::abs(d[v][1]) + std::abs(d[v][2]);
+    }
+    const double rn = pos.r_pos[0] + pos.r_pos[1] + pos.r_pos[2];
+    for (std::size_t t = 0; t < 9; ++t) {  // the eight corners of [e], then its centre
+        const auto pick = [&](std::size_t j) -> std::size_t { return t < 8 ? (t >> j) & 1u : 2u; };
+        const double sp = sn[0][pick(0)], cp = cs[0][pick(0)], sg = sn[1][pick(1)], cg = cs[1][pick(1)];
+        const double sb = sn[2][pick(2)], cb = cs[2][pick(2)];
+        // R = Rz(φ)·Rx(γ)·Rz(β) (rotation.hpp)
+        const double r[3][3] = {{cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg},
+                                {sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg},
+                                {sg * sb, sg * cb, cg}};
+        for (const auto& lk : l) {
+            double m[3], mn = 0.0, slack = 0.0;
+            for (std::size_t i = 0; i < 3; ++i) {
+                m[i] = r[i][0] * lk[0] + r[i][1] * lk[1] + r[i][2] * lk[2];
+                mn = std::max(mn, std::abs(m[i]));
+                slack += std::abs(m[i]) * pos.r_pos[i];
+            }
+            for (std::size_t v = 0; v < 3; ++v) {
+                const double worst = m[0] * d[v][0] + m[1] * d[v][1] + m[2] * d[v][2] - slack;
+                if (worst < -1e-9 * mn * (dn[v] + rn)) return true;
+            }
+        }
+    }
+    return false;
+}
 
 // noclone: GCC's IPA-CP otherwise clones this large function per call site with the CGAL
 // backend, and one test translation unit took over 20 min to compile at -O2 (12 s without).
