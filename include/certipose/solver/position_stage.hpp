@@ -14,7 +14,9 @@
 //    paper gives up a layer about ε_p thick along every constraint boundary; this keeps it.
 //  * Occlusion cuts: when the occlusion policy can name the shadows of the triangles that may
 //    block (ShadowingOcclusionPolicy), the part of an occlusion-PARTIAL box outside all of them
-//    is carved off as VALID.
+//    is carved off as VALID. The triangles that may block are named by one walk of the occlusion
+//    policy's tree per box, and the boxes inside it inherit their shadows: the pieces a carving
+//    cuts off a box and its rest share one walk of the whole box.
 // The stage is one InnerSeparator of the paver, whose state says whether the set already holds
 // on the whole box (an ancestor or a carving proved it): such boxes skip the contractor and the
 // set's test, which could not remove or decide anything, and go straight to occlusion. A box
@@ -141,11 +143,25 @@ struct position_separator {
                         if (is_empty(failing)) {
                             certified = true;  // no position of b violates the set: on to occlusion
                         } else {
-                            count->inner_pieces += carve(b, failing, min_piece, [&](box&& piece) {
+                            const box whole = b;
+                            std::vector<box> pieces;
+                            count->inner_pieces += carve(b, failing, min_piece, [&](box&& piece) { pieces.push_back(std::move(piece)); });
+                            // The pieces (certified: each asks occlusion) and, for a leaf, the rest
+                            // (its corner staircase) would each walk the tree: one walk for the
+                            // whole box serves them all.
+                            if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
+                                if (!pieces.empty() && options.occlusion_cuts && may_walk(whole, s)) {
+                                    bool covered = false;
+                                    box reach = box::empty();
+                                    state before = s;
+                                    if (!walk(whole, s, false, reach, covered)) s = before;  // the pieces walk on their own
+                                }
+                            }
+                            for (auto& piece : pieces) {
                                 state ps = s;
                                 ps.certified = true;
                                 sink.pending(std::move(piece), std::move(ps));
-                            });
+                            }
                         }
                     }
                 }
@@ -199,37 +215,18 @@ private:
             // One walk of the tree decides VISIBLE (no triangle may block) and finds the
             // shadows for the cuts; the classification's own walk is then needed only to look
             // for an OCCLUDED proof, on a box that one shadow covers whole.
-            if (options.occlusion_cuts) {
-                if (s.walk_failed_width == 0 || max_width(b) <= s.walk_failed_width / 2) {
-                    // The walk only names the triangles; their shadows are contracted after
-                    // it, so a walk that gives up costs no contraction.
-                    found_.clear();
-                    auto note = [&](std::size_t triangle) {
-                        found_.push_back(triangle);
-                        return true;
-                    };
-                    ++count->shadow_walks;
-                    if (occlusion->blockers(b, facet, note)) {
-                        named_.clear();
-                        for (const std::size_t triangle : found_)
-                            named_.push_back(&cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
-                        auto list = std::make_shared<shadow_list<I>>();
-                        bool covered = false;
-                        const box reach = reach_in(b, named_, *list, covered, full_effort);
-                        if (list->empty()) {
-                            s.visible = true;
-                            return visibility::visible;
-                        }
-                        s.shadows = std::move(list);
-                        if (blocked) *blocked = reach;
-                        if (!(covered && full_effort)) return visibility::partial;
-                    } else {
-                        // More triangles may block than the walk lists: a test that only looks
-                        // for VISIBLE would find one that blocks and say PARTIAL (on every 20th
-                        // facet of the four reference parts, asking it changed no VALID box).
-                        s.walk_failed_width = max_width(b);
-                        if (!full_effort) return visibility::partial;
-                    }
+            if (options.occlusion_cuts && may_walk(b, s)) {
+                bool covered = false;
+                box reach = box::empty();
+                if (walk(b, s, full_effort, reach, covered)) {
+                    if (s.visible) return visibility::visible;
+                    if (blocked) *blocked = reach;
+                    if (!(covered && full_effort)) return visibility::partial;
+                } else {
+                    // More triangles may block than the walk lists: a test that only looks
+                    // for VISIBLE would find one that blocks and say PARTIAL (on every 20th
+                    // facet of the four reference parts, asking it changed no VALID box).
+                    if (!full_effort) return visibility::partial;
                 }
             }
         }
@@ -237,6 +234,39 @@ private:
         const visibility seen = classify(b, full_effort);
         if (seen == visibility::visible) s.visible = true;
         return seen;
+    }
+
+    /// Is a walk for b's shadows worth it? Not within a box whose walk gave up unless b is at
+    /// most half as wide (see state::walk_failed_width).
+    static bool may_walk(const box& b, const state& s) {
+        return !s.visible && !s.shadows && (s.walk_failed_width == 0 || max_width(b) <= s.walk_failed_width / 2);
+    }
+
+    /// One walk of the tree for b: the shadows of the triangles that may block a sight line from
+    /// b go to s.shadows (those that may reach b; s.visible when none does), `reach` receives
+    /// the hull of what they reach of b and `covered` whether one covers all of b (asked only
+    /// with `need_covered`). False when the walk gave up (s.walk_failed_width records it).
+    bool walk(const box& b, state& s, bool need_covered, box& reach, bool& covered) {
+        // The walk only names the triangles; their shadows are contracted after it, so a walk
+        // that gives up costs no contraction.
+        found_.clear();
+        auto note = [&](std::size_t triangle) {
+            found_.push_back(triangle);
+            return true;
+        };
+        ++count->shadow_walks;
+        if (!occlusion->blockers(b, facet, note)) {
+            s.walk_failed_width = max_width(b);
+            return false;
+        }
+        named_.clear();
+        for (const std::size_t triangle : found_)
+            named_.push_back(&cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
+        auto list = std::make_shared<shadow_list<I>>();
+        reach = reach_in(b, named_, *list, covered, need_covered);
+        if (list->empty()) s.visible = true;
+        else s.shadows = std::move(list);
+        return true;
     }
 
     /// Calls visit(shadow, part) for each shadow of `list` that reaches b, with `part` what it
