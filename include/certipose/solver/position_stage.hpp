@@ -23,8 +23,9 @@
 // the bisector will not split is asked with occlusion_effort::visible_only (when the policy
 // takes it): OCCLUDED would discard it and PARTIAL makes it BOUNDARY, so the costly search for
 // an OCCLUDED certificate only decides which of the two non-VALID labels it gets. Such boxes
-// are BOUNDARY with reason `occlusion`. With occlusion cuts, only boxes whose halves would be
-// split again are asked for an OCCLUDED proof (position_separator::prove_occluded).
+// are BOUNDARY with reason `occlusion`. With occlusion cuts, no box is asked for an OCCLUDED
+// proof unless position_stage_options::occluded_proofs_with_cuts says so (then only boxes whose
+// halves would be split again; position_separator::prove_occluded).
 #pragma once
 
 #include <algorithm>
@@ -65,9 +66,15 @@ struct position_stage_options {
     /// Corner boxes split off one leaf in a row: the rest of a leaf's corner box may give one
     /// of its own, and so on, this many times (a staircase along the boundary; at most 255).
     std::size_t corner_depth = 2;
-    /// Look for OCCLUDED proofs (which prune a box and its subtree) on boxes whose halves would
-    /// be split again (see position_separator::prove_occluded).
+    /// Look for OCCLUDED proofs (which prune a box and its subtree) on the boxes the bisector
+    /// splits (position_separator::prove_occluded): without occlusion cuts (the paper's paving)
+    /// on every such box, with them only as `occluded_proofs_with_cuts` says.
     bool occluded_proofs = true;
+    /// With occlusion cuts, look for OCCLUDED proofs on the boxes whose halves would be split
+    /// again. Off by default: on every 20th facet of the four reference parts they pruned 1.7 %
+    /// of the BOUNDARY boxes (fewer, larger ones instead) for 22 % of the run's time, and no
+    /// VALID box changed; the cuts' shadows decide most of what a proof would.
+    bool occluded_proofs_with_cuts = false;
 };
 
 /// Counters of the position stage.
@@ -336,10 +343,13 @@ private:
     /// wider than ε_p, with halves that are leaves: pruning them saves two cheap tests, and
     /// on every 20th facet of the four reference parts the proof succeeded for 2.5–13 % of them.
     /// Asking only boxes whose halves would be split again took 8–24 % off the run for
-    /// 0.2–2.2 % more BOUNDARY boxes and the same VALID ones.
+    /// 0.2–2.2 % more BOUNDARY boxes and the same VALID ones; since the pieces of a carving
+    /// share one walk, asking none (the default, occluded_proofs_with_cuts) takes 22 % more
+    /// for 1.7 % more BOUNDARY boxes, again with the same VALID ones.
     bool prove_occluded(const box& b, bool leaf) {  // not const: a bisector may count its choices (round_robin)
         if (leaf || !options.occluded_proofs) return false;
         if (!options.occlusion_cuts) return true;
+        if (!options.occluded_proofs_with_cuts) return false;
         const auto cut = bisector.choose(b);
         if (!cut) return false;
         box lo = b, hi = b;
