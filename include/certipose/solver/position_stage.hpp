@@ -155,13 +155,18 @@ struct position_separator {
                             count->inner_pieces += carve(b, failing, min_piece, [&](box&& piece) { pieces.push_back(std::move(piece)); });
                             // The pieces (certified: each asks occlusion) and, for a leaf, the rest
                             // (its corner staircase) would each walk the tree: one walk for the
-                            // whole box serves them all.
+                            // whole box serves them all. When it gives up, boxes inside walk
+                            // again only once they are at most 5/8 as wide (not 1/2 as below a
+                            // box of their own: a piece is often much thinner than the whole).
+                            // Of the pieces' own walks after a failed one, 84 % gave up too
+                            // (featuretype, facet 3262); on every 20th facet of the four
+                            // reference parts this rule was 2 % faster than always walking
+                            // again, with slightly more VALID boxes and volume on each part.
                             if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
                                 if (!pieces.empty() && options.occlusion_cuts && may_walk(whole, s)) {
                                     bool covered = false;
                                     box reach = box::empty();
-                                    state before = s;
-                                    if (!walk(whole, s, false, reach, covered)) s = before;  // the pieces walk on their own
+                                    if (!walk(whole, s, false, reach, covered)) s.walk_failed_width = 1.25 * max_width(whole);
                                 }
                             }
                             for (auto& piece : pieces) {
