@@ -39,13 +39,12 @@
 //     bisects [p]. With β whole, the smallest box the halving would try is certified first:
 //     when that fails, the search gives up at once (one tiled certification instead of ~19).
 //  5. Hints (HintedOrientationPolicy, past the paper): the solver passes what the search of a
-//     neighbouring box in the same cell of ε_p (or, for a cell's first, in a neighbouring cell)
-//     found (`hint`: the refined scale and β's widened scale). The box at those scales around
-//     this box's own aim is tried first, then one step wider; the search above runs only when it
-//     fails. Neighbours mostly take the same scale, so most small boxes (carved pieces, corner
-//     boxes) cost 1–2 tiled certifications instead of ~24 (the refinement and β widening fail
-//     most of the time and cost the most); the box found may be a little narrower than a
-//     search of its own would give.
+//     neighbouring box in the same cell of ε_p found (`hint`: the refined scale and β's widened
+//     scale). The box at those scales around this box's own aim is tried first, then one step
+//     wider; the search above runs only when it fails. Neighbours mostly take the same scale,
+//     so most small boxes (carved pieces, corner boxes) cost 1–2 tiled certifications instead of
+//     ~24 (the refinement and β widening fail most of the time and cost the most); the box
+//     found may be a little narrower than a search of its own would give.
 //  6. Refutation: a box that `fov_refuted` shows to hold a pose not seeing the facet is given up
 //     without a tiled proof (which spends its whole budget before failing).
 // Near the ZXZ singularity (γ_nom ≈ 0 or π, looking straight down or up the z axis) φ and β are

@@ -320,27 +320,10 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     };
     // The orientation search of a box, starting from what the searches in its cell of ε_p found
     // (HintedOrientationPolicy; the hint changes how fast a box is found, not its proof).
-    using hint_type = typename detail::orientation_hint_of<orientation_type, I, camera_type>::type;
-    std::map<cell_key, hint_type> hints;
-    // A cell's first search starts from what a face neighbour's found, when one has searched:
-    // neighbouring cells mostly take the same scales.
-    const auto hint_of = [&](const position_box<I>& p) -> hint_type& {
-        const cell_key key = cell_of(p);
-        const auto [it, fresh] = hints.try_emplace(key);
-        if (fresh)
-            for (std::size_t k = 0; k < 6; ++k) {
-                cell_key n = key;
-                n[k / 2] += k % 2 ? 1 : -1;
-                if (const auto found = hints.find(n); found != hints.end()) {
-                    it->second = found->second;
-                    break;
-                }
-            }
-        return it->second;
-    };
+    std::map<cell_key, typename detail::orientation_hint_of<orientation_type, I, camera_type>::type> hints;
     const auto orient = [&](const position_box<I>& p) {
         if constexpr (HintedOrientationPolicy<orientation_type, I, camera_type>)
-            return orientation_.orient(p, f, camera_, options.orientation_eps, hint_of(p));
+            return orientation_.orient(p, f, camera_, options.orientation_eps, hints[cell_of(p)]);
         else
             return orientation_.orient(p, f, camera_, options.orientation_eps);
     };
