@@ -286,7 +286,8 @@ struct fov_position {
 /// Plain doubles: `true` is only ever used to give up on a box, never to certify one, so
 /// rounding could at worst cost a certification, and the margin (1e-9 of the terms' size,
 /// millions of times their rounding error) rules even that out. On plate_holes (facet 7) two
-/// thirds of the failed tiled proofs held such a corner pose, and they cost half the run.
+/// thirds of the failed tiled proofs held such a corner pose, and they spent half of the
+/// run's certifications.
 template <Interval I>
 bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
     if (pos.empty || !pos.finite || is_empty(orientation) || !detail::orientation::finite_box(orientation)) return false;

@@ -160,7 +160,7 @@ struct position_separator {
                             // box of their own: a piece is often much thinner than the whole).
                             // Of the pieces' own walks after a failed one, 84 % gave up too
                             // (featuretype, facet 3262); on every 20th facet of the four
-                            // reference parts this rule was 2 % faster than always walking
+                            // reference parts this rule was 2-7 % faster than always walking
                             // again, with slightly more VALID boxes and volume on each part.
                             if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
                                 if (!pieces.empty() && options.occlusion_cuts && may_walk(whole, s)) {
