@@ -185,6 +185,9 @@ struct face_key_hash {
     }
 };
 
+/// Boxes by one of their faces.
+using face_index = std::unordered_map<face_key, std::size_t, face_key_hash>;
+
 template <Interval I>
 face_key make_face_key(const position_box<I>& p, std::size_t d, double at) {
     const std::size_t a = (d + 1) % 3, b = (d + 2) % 3;
@@ -202,17 +205,16 @@ std::size_t merge_touching(std::vector<pose_box<I>>& boxes, FovOk&& fov_ok, cons
     std::size_t merges = 0;
     for (bool again = true; again && !(stop && stop());) {
         again = false;
-        std::unordered_map<face_key, std::size_t, face_key_hash> lower_face;  // box whose lower face is the key
+        face_index lower_face;  // box whose lower face is the key
         lower_face.reserve(3 * boxes.size());
-        const auto make_key = [](const position_box<I>& p, std::size_t d, double at) { return make_face_key(p, d, at); };
         std::vector<bool> gone(boxes.size(), false);
         for (std::size_t i = 0; i < boxes.size(); ++i)
-            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_key(boxes[i].position, d, lower(boxes[i].position[d])), i);
+            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_face_key(boxes[i].position, d, lower(boxes[i].position[d])), i);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (gone[i]) continue;
             if (i % 256 == 0 && stop && stop()) break;
             for (std::size_t d = 0; d < 3 && !gone[i]; ++d) {
-                const auto it = lower_face.find(make_key(boxes[i].position, d, upper(boxes[i].position[d])));
+                const auto it = lower_face.find(make_face_key(boxes[i].position, d, upper(boxes[i].position[d])));
                 if (it == lower_face.end() || it->second == i || gone[it->second]) continue;
                 const pose_box<I>& a = boxes[i];
                 const pose_box<I>& b = boxes[it->second];
@@ -247,20 +249,19 @@ std::size_t merge_touching(std::vector<pose_box<I>>& boxes, FovOk&& fov_ok, cons
 /// the merged box (position-stage VALID boxes: constraints 1–4 and 6). Returns the merges.
 template <Interval I>
 std::size_t merge_touching_positions(std::vector<position_box<I>>& boxes, double max_width) {
-    const auto make_key = [](const position_box<I>& p, std::size_t d, double at) { return make_face_key(p, d, at); };
     std::size_t merges = 0;
     // A few rounds: each can double a box, and more rounds cost more than they merge.
     for (int round = 0; round < 4; ++round) {
         bool again = false;
-        std::unordered_map<face_key, std::size_t, face_key_hash> lower_face;
+        face_index lower_face;
         lower_face.reserve(3 * boxes.size());
         for (std::size_t i = 0; i < boxes.size(); ++i)
-            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_key(boxes[i], d, lower(boxes[i][d])), i);
+            for (std::size_t d = 0; d < 3; ++d) lower_face.emplace(make_face_key(boxes[i], d, lower(boxes[i][d])), i);
         std::vector<bool> gone(boxes.size(), false), changed(boxes.size(), false);
         for (std::size_t i = 0; i < boxes.size(); ++i) {
             if (gone[i] || changed[i]) continue;
             for (std::size_t d = 0; d < 3; ++d) {
-                const auto it = lower_face.find(make_key(boxes[i], d, upper(boxes[i][d])));
+                const auto it = lower_face.find(make_face_key(boxes[i], d, upper(boxes[i][d])));
                 if (it == lower_face.end()) continue;
                 const std::size_t j = it->second;
                 if (j == i || gone[j] || changed[j]) continue;
