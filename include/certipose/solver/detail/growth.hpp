@@ -14,8 +14,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -178,10 +180,16 @@ using face_key = std::tuple<std::size_t, double, double, double, double, double>
 
 struct face_key_hash {
     std::size_t operator()(const face_key& k) const noexcept {
-        std::size_t h = std::get<0>(k);
-        const auto mix = [&](double x) { h = (h ^ std::hash<double>{}(x)) * 0x100000001b3ull; };  // equal doubles (0.0, -0.0) hash alike
+        // The bits of each double (0.0 for −0.0: equal keys hash alike), mixed by multiplication
+        // and a final xor-shift; std::hash<double> hashes the bytes (murmur) and was a third of
+        // the merges' time.
+        std::uint64_t h = std::get<0>(k);
+        const auto mix = [&](double x) {
+            h = (h ^ std::bit_cast<std::uint64_t>(x == 0.0 ? 0.0 : x)) * 0x9e3779b97f4a7c15ull;
+            h ^= h >> 29;
+        };
         mix(std::get<1>(k)), mix(std::get<2>(k)), mix(std::get<3>(k)), mix(std::get<4>(k)), mix(std::get<5>(k));
-        return h;
+        return static_cast<std::size_t>(h);
     }
 };
 
