@@ -100,6 +100,8 @@ public:
             inner = lower(ls[k][2]) > 0.0 ? std::min(inner, std::max(0.0, lower(atan(ls[k][2] / rho)))) : 0.0;
         }
         inner_ = inner;
+        for (std::size_t k = 0; k < 4; ++k)
+            for (std::size_t j = 0; j < 3; ++j) side_mids_[k][j] = mid(ls[k][j]);
         // Circumscribed cone: the largest angle from the axis of a ray through the image is at a
         // corner (the normalised image is a parallelogram, the norm is convex).
         const I a = I(K(0, 0)), b = I(K(0, 1)), c = I(K(1, 0)), d = I(K(1, 1));
@@ -121,6 +123,8 @@ public:
     explicit fov_frustum(const C& camera) : fov_frustum(camera.intrinsics(), camera.width_px(), camera.height_px()) {}
 
     const std::array<side, 4>& sides() const noexcept { return sides_; }
+    /// The midpoints of the sides' ℓ_k (plain doubles, for fov_refuted).
+    const std::array<std::array<double, 3>, 4>& side_mids() const noexcept { return side_mids_; }
     /// A lower bound of the half-angle of the largest cone about the optical axis whose rays all
     /// meet the image (0 when the principal point is outside it): inside it any roll is fine.
     double inner_half_angle() const noexcept { return inner_; }
@@ -129,6 +133,7 @@ public:
 
 private:
     std::array<side, 4> sides_{};
+    std::array<std::array<double, 3>, 4> side_mids_{};
     double inner_ = 0.0, outer_ = 0.0;
 };
 
@@ -230,6 +235,10 @@ struct fov_position {
     std::array<I, 3> n0{};                ///< ‖d0_i‖
     std::array<bool, 3> reaches{};        ///< the box may reach vertex i (no roll-free proof then)
     std::array<detail::orientation::bounds, 3> b_pos{}, b_pole{};  ///< angular radius of the box from v_i; angle of d0_i from +z
+    /// For fov_refuted (plain doubles, rounded to nearest): v_i − p0, its 1-norm, and that of r_pos.
+    std::array<std::array<double, 3>, 3> d_near{};
+    std::array<double, 3> d_norm1{};
+    double r_norm1 = 0.0;
 
     /// Throws invalid_argument("facet") for a non-finite vertex.
     fov_position(const position_box<I>& position, const facet& f) : box(position), target(f) {
@@ -270,12 +279,43 @@ struct fov_position {
         }
         const certipose::detail::round_to_nearest_scope nearest{};
         for (std::size_t i = 0; i < 3; ++i) {
+            for (std::size_t j = 0; j < 3; ++j) d_near[i][j] = f.v[i][static_cast<Eigen::Index>(j)] - p0[j];
+            d_norm1[i] = std::abs(d_near[i][0]) + std::abs(d_near[i][1]) + std::abs(d_near[i][2]);
+        }
+        r_norm1 = r_pos[0] + r_pos[1] + r_pos[2];
+        for (std::size_t i = 0; i < 3; ++i) {
             if (reaches[i]) continue;
             b_pos[i] = atan_bounds_nearest(tan_pos[i], tan_pos[i]);
             b_pole[i] = acos_bounds_nearest(lower(cos_pole[i]), upper(cos_pole[i]));
         }
     }
 };
+
+namespace detail::orientation {
+/// fov_refuted at one rotation, R = Rz(φ)·Rx(γ)·Rz(β) from its sines and cosines (rotation.hpp);
+/// call in round-to-nearest.
+template <Interval I>
+bool refuted_at(const fov_position<I>& pos, const fov_frustum<I>& frustum, double sp, double cp, double sg,
+                double cg, double sb, double cb) {
+    const double r[3][3] = {{cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg},
+                            {sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg},
+                            {sg * sb, sg * cb, cg}};
+    for (const auto& lk : frustum.side_mids()) {
+        double m[3], mn = 0.0, slack = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) {
+            m[i] = r[i][0] * lk[0] + r[i][1] * lk[1] + r[i][2] * lk[2];
+            mn = std::max(mn, std::abs(m[i]));
+            slack += std::abs(m[i]) * pos.r_pos[i];
+        }
+        for (std::size_t v = 0; v < 3; ++v) {
+            const auto& d = pos.d_near[v];
+            const double worst = m[0] * d[0] + m[1] * d[1] + m[2] * d[2] - slack;
+            if (worst < -1e-9 * mn * (pos.d_norm1[v] + pos.r_norm1)) return true;
+        }
+    }
+    return false;
+}
+}  // namespace detail::orientation
 
 /// A quick refutation of constraint 5 over [p] × [e]: true when, at a corner or the centre of
 /// [e] and the position of [p] worst for it, some vertex lies outside the image by a margin far
@@ -298,37 +338,11 @@ bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientati
         const std::array<double, 3> at{lower(orientation[j]), upper(orientation[j]), mid(orientation[j])};
         for (std::size_t t = 0; t < 3; ++t) sn[j][t] = std::sin(at[t]), cs[j][t] = std::cos(at[t]);
     }
-    std::array<std::array<double, 3>, 4> l{};
-    for (std::size_t k = 0; k < 4; ++k)
-        for (std::size_t j = 0; j < 3; ++j) l[k][j] = mid(frustum.sides()[k].l[j]);
-    std::array<std::array<double, 3>, 3> d{};
-    std::array<double, 3> dn{};
-    for (std::size_t v = 0; v < 3; ++v) {
-        for (std::size_t j = 0; j < 3; ++j)
-            d[v][j] = pos.target.v[v][static_cast<Eigen::Index>(j)] - pos.p0[j];
-        dn[v] = std::abs(d[v][0]) + std::abs(d[v][1]) + std::abs(d[v][2]);
-    }
-    const double rn = pos.r_pos[0] + pos.r_pos[1] + pos.r_pos[2];
     for (std::size_t t = 0; t < 9; ++t) {  // the eight corners of [e], then its centre
         const auto pick = [&](std::size_t j) -> std::size_t { return t < 8 ? (t >> j) & 1u : 2u; };
-        const double sp = sn[0][pick(0)], cp = cs[0][pick(0)], sg = sn[1][pick(1)], cg = cs[1][pick(1)];
-        const double sb = sn[2][pick(2)], cb = cs[2][pick(2)];
-        // R = Rz(φ)·Rx(γ)·Rz(β) (rotation.hpp)
-        const double r[3][3] = {{cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg},
-                                {sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg},
-                                {sg * sb, sg * cb, cg}};
-        for (const auto& lk : l) {
-            double m[3], mn = 0.0, slack = 0.0;
-            for (std::size_t i = 0; i < 3; ++i) {
-                m[i] = r[i][0] * lk[0] + r[i][1] * lk[1] + r[i][2] * lk[2];
-                mn = std::max(mn, std::abs(m[i]));
-                slack += std::abs(m[i]) * pos.r_pos[i];
-            }
-            for (std::size_t v = 0; v < 3; ++v) {
-                const double worst = m[0] * d[v][0] + m[1] * d[v][1] + m[2] * d[v][2] - slack;
-                if (worst < -1e-9 * mn * (dn[v] + rn)) return true;
-            }
-        }
+        if (detail::orientation::refuted_at(pos, frustum, sn[0][pick(0)], cs[0][pick(0)], sn[1][pick(1)],
+                                            cs[1][pick(1)], sn[2][pick(2)], cs[2][pick(2)]))
+            return true;
     }
     return false;
 }

@@ -46,7 +46,8 @@
 //     ~24 (the refinement and β widening fail most of the time and cost the most); the box
 //     found may be a little narrower than a search of its own would give.
 //  6. Refutation: a box that `fov_refuted` shows to hold a pose not seeing the facet is given up
-//     without a tiled proof (which spends its whole budget before failing).
+//     without a tiled proof (which spends its whole budget before failing). A search without a
+//     hint refutes its narrowest box first: every box its halving would try holds it.
 // Near the ZXZ singularity (γ_nom ≈ 0 or π, looking straight down or up the z axis) φ and β are
 // coupled (at γ = 0 only φ + β matters) and the φ offsets blow up as 1/sin γ: they are capped at
 // ±π. Boxes stay sound (certification bounds the axis by its angle from the pole there) but the
@@ -489,11 +490,16 @@ public:
             // it. Most position boxes no orientation fits are such (wider than ε_p, bisected
             // next): plate_holes, facet 7. Not with β scaled too: a wider box may reach the
             // roll-free cone test, which certifies what the centred form of a narrow one cannot.
+            double narrowest = 0.5;
+            while (narrowest > 1e-6 && !narrow(scaled(narrowest))) narrowest *= 0.5;
             double floor = 0.0;
             if (roll_free) {
-                floor = 0.5;
-                while (floor > 1e-6 && !narrow(scaled(floor))) floor *= 0.5;
+                floor = narrowest;
                 if ((tried && from.scale == floor) || !certified(scaled(floor))) return std::nullopt;
+            } else if (!hinted && fov_refuted(prepared, scaled(narrowest), frustum)) {
+                // Without a hint the halving tries boxes that all contain this one (the scales
+                // from 1/2 down to it), so they all hold its failing pose: none can certify.
+                return std::nullopt;
             }
             std::optional<orientation_box<I>> best;
             double s_ok = 1.0, s_fail = 1.0;
