@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -54,38 +55,49 @@ Eigen::Vector3d clamp_to_box(const Eigen::Vector3d& q, const position_box<I>& b)
             std::clamp(q.z(), lower(b[2]), upper(b[2]))};
 }
 
-/// Rigorous lower bound of the box–triangle distance from direction u (0 if u separates nothing).
-/// Must be called with the rounding mode held (rounding_guard<I>).
+/// Rigorous lower bounds of the box–triangle distance from directions u and −u (0 where one
+/// separates nothing), from one evaluation: the extremes of u·p over the box and over the
+/// triangle give both (the bounds for −u are those of u negated, exactly so under outward
+/// rounding). Must be called with the rounding mode held (rounding_guard<I>).
 template <Interval I>
-double separation_along(const position_box<I>& b, const std::array<Eigen::Vector3d, 3>& v,
-                        const Eigen::Vector3d& u) {
-    // min over the box of u·p is attained componentwise; the interval dot product encloses it.
+std::array<double, 2> separation_along(const position_box<I>& b, const std::array<Eigen::Vector3d, 3>& v,
+                                       const Eigen::Vector3d& u) {
+    // min and max over the box of u·p are attained componentwise; the interval dot product
+    // encloses them.
     const I box_side = I(u.x()) * b[0] + I(u.y()) * b[1] + I(u.z()) * b[2];
-    double tri_max = -std::numeric_limits<double>::infinity();
+    double tri_max = -std::numeric_limits<double>::infinity(), tri_min = std::numeric_limits<double>::infinity();
     for (const auto& vi : v) {
         const I s = I(u.x()) * I(vi.x()) + I(u.y()) * I(vi.y()) + I(u.z()) * I(vi.z());
         tri_max = std::max(tri_max, upper(s));
+        tri_min = std::min(tri_min, lower(s));
     }
-    const double gap = lower(I(lower(box_side)) - I(tri_max));  // ≤ min box − max triangle
-    if (!(gap > 0.0)) return 0.0;
+    const double gap_u = lower(I(lower(box_side)) - I(tri_max));      // ≤ min box − max triangle along u
+    const double gap_minus = lower(I(tri_min) - I(upper(box_side)));  // the same along −u
+    if (!(gap_u > 0.0) && !(gap_minus > 0.0)) return {0.0, 0.0};
     const I norm = sqrt(sqr(I(u.x())) + sqr(I(u.y())) + sqr(I(u.z())));
-    return lower(I(gap) / I(upper(norm)));
+    const auto along = [&](double gap) { return gap > 0.0 ? lower(I(gap) / I(upper(norm))) : 0.0; };
+    return {along(gap_u), along(gap_minus)};
 }
 
 }  // namespace detail
 
 /// A lower bound, certified, of min { ‖p − q‖ : p ∈ box, q ∈ triangle }; 0 when the two may meet.
-/// Needs the rounding mode held (the caller's rounding_guard<I>).
+/// It may stop at the first bound reaching `enough` (a caller that only compares the bound
+/// with a threshold needs no better one). Needs the rounding mode held (the caller's
+/// rounding_guard<I>).
 template <Interval I>
 double box_triangle_distance_lower(const position_box<I>& b, const std::array<Eigen::Vector3d, 3>& v,
-                                   const Eigen::Vector3d& normal) {
+                                   const Eigen::Vector3d& normal,
+                                   double enough = std::numeric_limits<double>::infinity()) {
     double best = 0.0;
     const auto try_direction = [&](const Eigen::Vector3d& u) {
-        if (u.squaredNorm() > 0.0 && std::isfinite(u.squaredNorm()))
-            best = std::max(best, detail::separation_along(b, v, u));
+        if (u.squaredNorm() > 0.0 && std::isfinite(u.squaredNorm())) {
+            const auto both = detail::separation_along(b, v, u);
+            best = std::max({best, both[0], both[1]});
+        }
     };
-    try_direction(normal);
-    try_direction(-normal);
+    try_direction(normal);  // and −normal
+    if (best >= enough && best > 0.0) return best;
     // A few rounds of alternating projection approximate the closest pair (box and triangle
     // are convex); the final difference is the separating direction to test.
     const auto m = midpoint(b);

@@ -195,7 +195,7 @@ private:
         if (!(lower(view) >= 0.0)) return undecided_by(boundary_reason::view_angle);
         for (const I& d : d2)
             if (!(upper(d) <= enc_.dmax2_lo)) return undecided_by(boundary_reason::distance);
-        const double near = box_triangle_distance_lower(b, f_.v, f_.normal);
+        const double near = box_triangle_distance_lower(b, f_.v, f_.normal, range_.min);  // compared with d_min only
         if (!(near > 0.0)) return undecided_by(boundary_reason::facet_contact);  // C_f
         if (!(near >= range_.min)) return undecided_by(boundary_reason::distance);
         return {verdict::satisfied, boundary_reason::constraint};
