@@ -291,32 +291,6 @@ struct fov_position {
     }
 };
 
-namespace detail::orientation {
-/// fov_refuted at one rotation, R = Rz(φ)·Rx(γ)·Rz(β) from its sines and cosines (rotation.hpp);
-/// call in round-to-nearest.
-template <Interval I>
-bool refuted_at(const fov_position<I>& pos, const fov_frustum<I>& frustum, double sp, double cp, double sg,
-                double cg, double sb, double cb) {
-    const double r[3][3] = {{cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg},
-                            {sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg},
-                            {sg * sb, sg * cb, cg}};
-    for (const auto& lk : frustum.side_mids()) {
-        double m[3], mn = 0.0, slack = 0.0;
-        for (std::size_t i = 0; i < 3; ++i) {
-            m[i] = r[i][0] * lk[0] + r[i][1] * lk[1] + r[i][2] * lk[2];
-            mn = std::max(mn, std::abs(m[i]));
-            slack += std::abs(m[i]) * pos.r_pos[i];
-        }
-        for (std::size_t v = 0; v < 3; ++v) {
-            const auto& d = pos.d_near[v];
-            const double worst = m[0] * d[0] + m[1] * d[1] + m[2] * d[2] - slack;
-            if (worst < -1e-9 * mn * (pos.d_norm1[v] + pos.r_norm1)) return true;
-        }
-    }
-    return false;
-}
-}  // namespace detail::orientation
-
 /// A quick refutation of constraint 5 over [p] × [e]: true when, at a corner or the centre of
 /// [e] and the position of [p] worst for it, some vertex lies outside the image by a margin far
 /// above rounding. Such a box holds a pose that does not see the facet, so no proof of it can
@@ -340,9 +314,25 @@ bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientati
     }
     for (std::size_t t = 0; t < 9; ++t) {  // the eight corners of [e], then its centre
         const auto pick = [&](std::size_t j) -> std::size_t { return t < 8 ? (t >> j) & 1u : 2u; };
-        if (detail::orientation::refuted_at(pos, frustum, sn[0][pick(0)], cs[0][pick(0)], sn[1][pick(1)],
-                                            cs[1][pick(1)], sn[2][pick(2)], cs[2][pick(2)]))
-            return true;
+        const double sp = sn[0][pick(0)], cp = cs[0][pick(0)], sg = sn[1][pick(1)], cg = cs[1][pick(1)];
+        const double sb = sn[2][pick(2)], cb = cs[2][pick(2)];
+        // R = Rz(φ)·Rx(γ)·Rz(β) (rotation.hpp)
+        const double r[3][3] = {{cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg},
+                                {sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg},
+                                {sg * sb, sg * cb, cg}};
+        for (const auto& lk : frustum.side_mids()) {
+            double m[3], mn = 0.0, slack = 0.0;
+            for (std::size_t i = 0; i < 3; ++i) {
+                m[i] = r[i][0] * lk[0] + r[i][1] * lk[1] + r[i][2] * lk[2];
+                mn = std::max(mn, std::abs(m[i]));
+                slack += std::abs(m[i]) * pos.r_pos[i];
+            }
+            for (std::size_t v = 0; v < 3; ++v) {
+                const auto& d = pos.d_near[v];
+                const double worst = m[0] * d[0] + m[1] * d[1] + m[2] * d[2] - slack;
+                if (worst < -1e-9 * mn * (pos.d_norm1[v] + pos.r_norm1)) return true;
+            }
+        }
     }
     return false;
 }

@@ -490,16 +490,19 @@ public:
             // it. Most position boxes no orientation fits are such (wider than ε_p, bisected
             // next): plate_holes, facet 7. Not with β scaled too: a wider box may reach the
             // roll-free cone test, which certifies what the centred form of a narrow one cannot.
-            double narrowest = 0.5;
-            while (narrowest > 1e-6 && !narrow(scaled(narrowest))) narrowest *= 0.5;
             double floor = 0.0;
-            if (roll_free) {
-                floor = narrowest;
-                if ((tried && from.scale == floor) || !certified(scaled(floor))) return std::nullopt;
-            } else if (!hinted && fov_refuted(prepared, scaled(narrowest), frustum)) {
-                // Without a hint the halving tries boxes that all contain this one (the scales
-                // from 1/2 down to it), so they all hold its failing pose: none can certify.
-                return std::nullopt;
+            if (roll_free || !hinted) {
+                double narrowest = 0.5;
+                while (narrowest > 1e-6 && !narrow(scaled(narrowest))) narrowest *= 0.5;
+                if (roll_free) {
+                    floor = narrowest;
+                    if ((tried && from.scale == floor) || !certified(scaled(floor))) return std::nullopt;
+                } else if (fov_refuted(prepared, scaled(narrowest), frustum)) {
+                    // Without a hint the halving tries boxes that all contain this one (the
+                    // scales from 1/2 down to it), so they all hold its failing pose: none can
+                    // certify.
+                    return std::nullopt;
+                }
             }
             std::optional<orientation_box<I>> best;
             double s_ok = 1.0, s_fail = 1.0;

@@ -113,10 +113,12 @@ struct position_separator {
         /// The shadows of every triangle that may block a sight line from the box (found for
         /// an ancestor: one tree walk serves all the boxes below it); null until needed.
         std::shared_ptr<const shadow_list<I>> shadows{};
-        /// The largest width of the box (an ancestor) whose walk for shadows gave up (too many
-        /// possible blockers, or not strictly in front of the facet); 0: none did. The walk is
-        /// asked again only for boxes at most half as wide: one just a little smaller would
-        /// almost surely give up too, and each failed walk costs as much as a successful one.
+        /// After a walk for shadows gave up (too many possible blockers, or not strictly in
+        /// front of the facet): the largest width of the box it walked, or 1.25 times that for
+        /// the whole box of a carving, whose pieces are often much thinner (see separate); 0:
+        /// none did. The walk is asked again only for boxes at most half this wide: one just a
+        /// little smaller would almost surely give up too, and each failed walk costs as much
+        /// as a successful one.
         double walk_failed_width = 0;
         friend bool operator==(const state&, const state&) = default;
     };
@@ -249,7 +251,7 @@ private:
     }
 
     /// Is a walk for b's shadows worth it? Not within a box whose walk gave up unless b is at
-    /// most half as wide (see state::walk_failed_width).
+    /// most half of state::walk_failed_width wide.
     static bool may_walk(const box& b, const state& s) {
         return !s.visible && !s.shadows && (s.walk_failed_width == 0 || max_width(b) <= s.walk_failed_width / 2);
     }
