@@ -326,6 +326,55 @@ TEST_CASE_TEMPLATE("fov_refuted: only boxes holding a corner pose that fails, ne
     CHECK(failing_not_refuted <= refuted / 10);  // the worst position is found, not sampled
 }
 
+TEST_CASE_TEMPLATE("certify_fov and fov_refuted: sines and cosines carried from a box to its tiles change no verdict", I,
+                   CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
+    // certify_tiled hands each tile the values its parent computed (angle_trig): every verdict
+    // must be the one the tile gets with values of its own, down through several splits, and a
+    // value held for another abscissa must never be used.
+    const auto cam = design_camera();
+    const fov_frustum<I> frustum(cam);
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), u01(0.0, 1.0);
+    std::size_t tiles = 0, satisfied = 0, undecided = 0, refuted = 0;
+    for (std::size_t i = 0; i < 600; ++i) {
+        const auto s = random_scenario<I>(rng, kind_of(i));
+        const auto aim = nominal_aim(s.position, s.f);
+        REQUIRE(aim);
+        const fov_position<I> prepared(s.position, s.f);
+        const double w = 0.3 * u01(rng) * u01(rng), off = 0.1 * u(rng), wb = 0.3 * u01(rng);
+        orientation_box<I> e;
+        e[0] = I(aim->phi + off - w, aim->phi + off + w), e[1] = I(aim->gamma - off - w, aim->gamma - off + w),
+        e[2] = I(-wb, wb);
+        detail::orientation::angle_trig carried;
+        const bool r = fov_refuted(prepared, e, frustum, carried);
+        CHECK(r == fov_refuted(prepared, e, frustum));
+        refuted += r;
+        // Split at random dimensions and points, always carrying the parent's values along.
+        for (int depth = 0; depth < 6; ++depth, ++tiles) {
+            detail::orientation::angle_trig own;
+            const verdict shared = certify_fov(prepared, e, frustum, carried);
+            REQUIRE(shared == certify_fov(prepared, e, frustum, own));
+            CHECK(fov_refuted(prepared, e, frustum, carried) == fov_refuted(prepared, e, frustum));
+            satisfied += shared == verdict::satisfied;
+            undecided += shared == verdict::undecided;
+            const std::size_t k = static_cast<std::size_t>(u01(rng) * 3) % 3;
+            const double at = lower(e[k]) + (0.2 + 0.6 * u01(rng)) * (upper(e[k]) - lower(e[k]));
+            const auto [lo, hi] = bisect_at(e, k, at);
+            e = u01(rng) < 0.5 ? lo : hi;
+        }
+        // Values held for other abscissae: those of an unrelated box.
+        orientation_box<I> other = e;
+        for (std::size_t j = 0; j < 3; ++j) other[j] = I(lower(e[j]) - 0.05, upper(e[j]) + 0.07);
+        detail::orientation::angle_trig stale;
+        (void)certify_fov(prepared, other, frustum, stale);
+        CHECK(certify_fov(prepared, e, frustum, stale) == certify_fov(prepared, e, frustum));
+    }
+    MESSAGE("carried trig: " << tiles << " tiles (" << satisfied << " satisfied, " << undecided << " undecided), "
+                             << refuted << " of 600 boxes refuted");
+    CHECK(satisfied >= 300);  // not vacuous: both verdicts that matter occur
+    CHECK(undecided >= 100);
+}
+
 TEST_CASE_TEMPLATE("paper_orientation: every sampled pose of every certified box satisfies constraint 5", I,
                    CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
     const auto cam = design_camera();

@@ -302,15 +302,19 @@ struct fov_position {
 /// millions of times their rounding error) rules even that out. On plate_holes (facet 7) two
 /// thirds of the failed tiled proofs held such a corner pose, and they spent half of the
 /// run's certifications.
+///
+/// `trig` holds sines and cosines computed for this box or the box it was split from (a tiled
+/// proof passes one along: detail/spherical.hpp, angle_trig); the overload without builds its own.
 template <Interval I>
-bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
+bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum,
+                 detail::orientation::angle_trig& trig) {
     if (pos.empty || !pos.finite || is_empty(orientation) || !detail::orientation::finite_box(orientation)) return false;
     const certipose::detail::round_to_nearest_scope nearest{};
     // sin and cos of the lower bound, upper bound and midpoint of each angle.
     std::array<std::array<double, 3>, 3> sn{}, cs{};
     for (std::size_t j = 0; j < 3; ++j) {
         const std::array<double, 3> at{lower(orientation[j]), upper(orientation[j]), mid(orientation[j])};
-        for (std::size_t t = 0; t < 3; ++t) sn[j][t] = std::sin(at[t]), cs[j][t] = std::cos(at[t]);
+        for (std::size_t t = 0; t < 3; ++t) trig.at(j, t, at[t], sn[j][t], cs[j][t]);
     }
     for (std::size_t t = 0; t < 9; ++t) {  // the eight corners of [e], then its centre
         const auto pick = [&](std::size_t j) -> std::size_t { return t < 8 ? (t >> j) & 1u : 2u; };
@@ -337,6 +341,12 @@ bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientati
     return false;
 }
 
+template <Interval I>
+bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
+    detail::orientation::angle_trig trig;
+    return fov_refuted(pos, orientation, frustum, trig);
+}
+
 // noclone: GCC's IPA-CP otherwise clones this large function per call site with the CGAL
 // backend, and one test translation unit took over 20 min to compile at -O2 (12 s without).
 // Clang has no such attribute (nor the problem): silence its unknown-attribute warning.
@@ -346,10 +356,10 @@ bool fov_refuted(const fov_position<I>& pos, const orientation_box<I>& orientati
 #endif
 /// Proves or refutes constraint 5 over the whole 6D box [p] × [e] (see the header comment), for
 /// a position box prepared once (fov_position). An empty box yields `violated` (it holds no pose
-/// to certify); a box with an infinite bound yields `undecided`.
+/// to certify); a box with an infinite bound yields `undecided`. `trig`: as for fov_refuted.
 template <Interval I>
 [[gnu::noclone]] verdict certify_fov(const fov_position<I>& pos, const orientation_box<I>& orientation,
-                                     const fov_frustum<I>& frustum) {
+                                     const fov_frustum<I>& frustum, detail::orientation::angle_trig& trig) {
     using namespace detail::orientation;
     using certipose::detail::round_to_nearest_scope;
     const rounding_guard<I> guard{};
@@ -372,16 +382,31 @@ template <Interval I>
     bounds b_sg_lo, b_cg_lo, b_sg_hi, b_cg_hi, b_cr, b_g;
     {
         const round_to_nearest_scope nearest{};
-        sincos_bounds_nearest(lower(phi), upper(phi), b_sp, b_cp);
-        sincos_bounds_nearest(lower(gam), upper(gam), b_sg, b_cg);
+        // sin and cos at each bound of [e] (slots 0, 1 of `trig`) and at its centre (slot 2).
+        std::array<std::array<double, 3>, 3> sv{}, cv{};
+        const std::array<double, 3> centre{phi0, gam0, bet0};
+        for (std::size_t j = 0; j < 3; ++j) {
+            trig.at(j, 0, lower(orientation[j]), sv[j][0], cv[j][0]);
+            trig.at(j, 1, upper(orientation[j]), sv[j][1], cv[j][1]);
+            trig.at(j, 2, centre[j], sv[j][2], cv[j][2]);
+        }
+        const auto over = [&](std::size_t j, bounds& sine, bounds& cosine) {
+            sincos_bounds_from(lower(orientation[j]), upper(orientation[j]), sv[j][0], cv[j][0], sv[j][1], cv[j][1], sine,
+                               cosine);
+        };
+        const auto at = [&](std::size_t j, std::size_t k, double value, bounds& sine, bounds& cosine) {
+            sincos_bounds_from(value, value, sv[j][k], cv[j][k], sv[j][k], cv[j][k], sine, cosine);
+        };
+        over(0, b_sp, b_cp);
+        over(1, b_sg, b_cg);
         b_g = acos_bounds_nearest(b_cg.lo, b_cg.hi);  // angle G between the axis and +z
-        sincos_bounds_nearest(lower(bet), upper(bet), b_sb, b_cb);
-        sincos_bounds_nearest(phi0, phi0, b_sp0, b_cp0);
-        sincos_bounds_nearest(gam0, gam0, b_sg0, b_cg0);
-        sincos_bounds_nearest(bet0, bet0, b_sb0, b_cb0);
+        over(2, b_sb, b_cb);
+        at(0, 2, phi0, b_sp0, b_cp0);
+        at(1, 2, gam0, b_sg0, b_cg0);
+        at(2, 2, bet0, b_sb0, b_cb0);
         if (patch) {
-            sincos_bounds_nearest(lower(gam), lower(gam), b_sg_lo, b_cg_lo);
-            sincos_bounds_nearest(upper(gam), upper(gam), b_sg_hi, b_cg_hi);
+            at(1, 0, lower(gam), b_sg_lo, b_cg_lo);
+            at(1, 1, upper(gam), b_sg_hi, b_cg_hi);
             b_cr = cos_bounds_nearest(r_phi, r_phi);
         }
     }
@@ -495,6 +520,12 @@ template <Interval I>
 #if defined(__clang__)
 #pragma clang diagnostic pop
 #endif
+
+template <Interval I>
+verdict certify_fov(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
+    detail::orientation::angle_trig trig;
+    return certify_fov(pos, orientation, frustum, trig);
+}
 
 /// Same for a position box given as such. Throws invalid_argument("facet") for a non-finite vertex.
 template <Interval I>

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -72,21 +73,53 @@ inline bounds cos_bounds_nearest(double l, double u) {
 inline bounds sin_bounds_nearest(double l, double u) {
     return periodic_bounds_from(l, u, std::sin(l), l == u ? std::sin(l) : std::sin(u), std::numbers::pi / 2);
 }
-/// Both enclosures of [l, u] at once: one libm sincos per endpoint instead of a sin and a cos
-/// (glibc computes both with the same code as sin and cos, to the same accuracy), and one for a
-/// point interval.
-inline void sincos_bounds_nearest(double l, double u, bounds& sine, bounds& cosine) {
-    double sl = 0, cl = 0, su = 0, cu = 0;
+/// sin x and cos x (call inside a nearest scope): one libm sincos where there is one (glibc
+/// computes both with the same code as sin and cos, to the same values), else both.
+inline void sincos_nearest(double x, double& s, double& c) {
 #if defined(__GLIBC__)
-    ::sincos(l, &sl, &cl);
-    if (l == u) su = sl, cu = cl;
-    else ::sincos(u, &su, &cu);
+    ::sincos(x, &s, &c);
 #else
-    sl = std::sin(l), cl = std::cos(l), su = std::sin(u), cu = std::cos(u);
+    s = std::sin(x), c = std::cos(x);
 #endif
+}
+
+/// Both enclosures of [l, u] from sin and cos at its bounds (call inside a nearest scope).
+inline void sincos_bounds_from(double l, double u, double sl, double cl, double su, double cu, bounds& sine,
+                               bounds& cosine) {
     sine = periodic_bounds_from(l, u, sl, su, std::numbers::pi / 2);
     cosine = periodic_bounds_from(l, u, cl, cu, 0.0);
 }
+
+/// Both enclosures of [l, u] at once: one libm sincos per endpoint instead of a sin and a cos,
+/// and one for a point interval.
+inline void sincos_bounds_nearest(double l, double u, bounds& sine, bounds& cosine) {
+    double sl = 0, cl = 0, su = 0, cu = 0;
+    sincos_nearest(l, sl, cl);
+    if (l == u) su = sl, cu = cl;
+    else sincos_nearest(u, su, cu);
+    sincos_bounds_from(l, u, sl, cl, su, cu, sine, cosine);
+}
+
+/// sin and cos at the lower bound, upper bound and a midpoint of each of three angles, kept
+/// with the abscissa they were computed at. A tiled proof asks fov_refuted and certify_fov about
+/// one box, and each tile shares all but two of these abscissae with the box it was split from;
+/// each asks `at` for what it needs, and only an abscissa not held already costs a libm call.
+/// The values are the ones each evaluation would compute for itself (the same libm call on the
+/// same double), so sharing them changes no verdict.
+struct angle_trig {
+    static constexpr double none = std::numeric_limits<double>::quiet_NaN();  // equals no abscissa
+    std::array<std::array<double, 3>, 3> x{{{none, none, none}, {none, none, none}, {none, none, none}}}, s{}, c{};
+
+    /// sin and cos of `value` for angle j, slot k (0: lower bound, 1: upper bound, 2: midpoint);
+    /// inside a nearest scope.
+    void at(std::size_t j, std::size_t k, double value, double& sine, double& cosine) {
+        if (!(x[j][k] == value)) {
+            sincos_nearest(value, s[j][k], c[j][k]);
+            x[j][k] = value;
+        }
+        sine = s[j][k], cosine = c[j][k];
+    }
+};
 /// acos is decreasing on [−1, 1]; arguments are clamped to it (call inside a nearest scope).
 inline bounds acos_bounds_nearest(double l, double u) {
     const double lo = widen_down(std::acos(std::clamp(u, -1.0, 1.0)));
