@@ -589,7 +589,7 @@ public:
                        const fov_frustum<I>& frustum, std::size_t& certifications) const {
         // The sines and cosines of a box's bounds and centre go with it: the refutation and the
         // first evaluation share all their bounds, and a tile all but the two its split made
-        // (~40 % of the libm calls of a plate_holes run).
+        // (~45 % fewer sines and cosines on plate_holes, facet 7).
         detail::orientation::angle_trig trig;
         if (fov_refuted(position, box, frustum, trig)) return false;
         std::vector<std::pair<orientation_box<I>, detail::orientation::angle_trig>> stack{{box, trig}};

@@ -20,8 +20,8 @@
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <numbers>
 #include <memory_resource>
+#include <numbers>
 #include <optional>
 #include <tuple>
 #include <unordered_map>
@@ -202,8 +202,8 @@ face_key make_face_key(const position_box<I>& p, std::size_t d, double at) {
 
 /// The boxes of one round of a merge by their lower faces (the first box listed for a face
 /// keeps it). Built, searched and dropped once per round, so its nodes come from one buffer
-/// released at once: a heap allocation and a free per face were a third of the merges' time
-/// (plate_holes, facet 7).
+/// released at once instead of a heap allocation and a free per face (on plate_holes, facet 7,
+/// the merges went from 5.9 to 5.1 % of the run; what is left is mostly the look-ups).
 class lower_face_index {
 public:
     /// `position_of(box)` is the position box of an element of `boxes`.
