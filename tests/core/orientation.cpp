@@ -154,6 +154,15 @@ inline aim_kind kind_of(std::size_t i) {
     return i % 4 == 1 ? aim_kind::straight_down : i % 4 == 3 ? aim_kind::straight_up : aim_kind::general;
 }
 
+/// An orientation box of half-widths w (φ, γ) and wb (β, about 0) whose φ, γ centre is moved
+/// off the aim by (+off, −off).
+template <class I>
+certipose::orientation_box<I> box_near_aim(const certipose::zxz_angles& aim, double off, double w, double wb) {
+    certipose::orientation_box<I> e;
+    e[0] = I(aim.phi + off - w, aim.phi + off + w), e[1] = I(aim.gamma - off - w, aim.gamma - off + w), e[2] = I(-wb, wb);
+    return e;
+}
+
 // A camera model written by a user: only what the concept asks for.
 struct user_camera {
     Eigen::Matrix3d intrinsics() const {
@@ -292,9 +301,7 @@ TEST_CASE_TEMPLATE("fov_refuted: only boxes holding a corner pose that fails, ne
         REQUIRE(aim);
         const double w = 0.3 * u01(rng) * u01(rng), off = 0.1 * u(rng);
         const double wb = u01(rng) < 0.3 ? pi : 0.3 * u01(rng);
-        orientation_box<I> e;
-        e[0] = I(aim->phi + off - w, aim->phi + off + w), e[1] = I(aim->gamma - off - w, aim->gamma - off + w),
-        e[2] = I(-wb, wb);
+        orientation_box<I> e = box_near_aim<I>(*aim, off, w, wb);
         const bool r = fov_refuted(fov_position<I>(s.position, s.f), e, frustum);
         // Does a corner pose fail constraint 5 (plain evaluation)?
         bool corner_fails = false;
@@ -342,9 +349,7 @@ TEST_CASE_TEMPLATE("certify_fov and fov_refuted: sines and cosines carried from 
         REQUIRE(aim);
         const fov_position<I> prepared(s.position, s.f);
         const double w = 0.3 * u01(rng) * u01(rng), off = 0.1 * u(rng), wb = 0.3 * u01(rng);
-        orientation_box<I> e;
-        e[0] = I(aim->phi + off - w, aim->phi + off + w), e[1] = I(aim->gamma - off - w, aim->gamma - off + w),
-        e[2] = I(-wb, wb);
+        orientation_box<I> e = box_near_aim<I>(*aim, off, w, wb);
         detail::orientation::angle_trig carried;
         const bool r = fov_refuted(prepared, e, frustum, carried);
         CHECK(r == fov_refuted(prepared, e, frustum));

@@ -394,19 +394,19 @@ template <Interval I>
             sincos_bounds_from(lower(orientation[j]), upper(orientation[j]), sv[j][0], cv[j][0], sv[j][1], cv[j][1], sine,
                                cosine);
         };
-        const auto at = [&](std::size_t j, std::size_t k, double value, bounds& sine, bounds& cosine) {
+        const auto at_point = [&](std::size_t j, std::size_t k, double value, bounds& sine, bounds& cosine) {
             sincos_bounds_from(value, value, sv[j][k], cv[j][k], sv[j][k], cv[j][k], sine, cosine);
         };
         over(0, b_sp, b_cp);
         over(1, b_sg, b_cg);
         b_g = acos_bounds_nearest(b_cg.lo, b_cg.hi);  // angle G between the axis and +z
         over(2, b_sb, b_cb);
-        at(0, 2, phi0, b_sp0, b_cp0);
-        at(1, 2, gam0, b_sg0, b_cg0);
-        at(2, 2, bet0, b_sb0, b_cb0);
+        at_point(0, 2, phi0, b_sp0, b_cp0);
+        at_point(1, 2, gam0, b_sg0, b_cg0);
+        at_point(2, 2, bet0, b_sb0, b_cb0);
         if (patch) {
-            at(1, 0, lower(gam), b_sg_lo, b_cg_lo);
-            at(1, 1, upper(gam), b_sg_hi, b_cg_hi);
+            at_point(1, 0, lower(gam), b_sg_lo, b_cg_lo);
+            at_point(1, 1, upper(gam), b_sg_hi, b_cg_hi);
             b_cr = cos_bounds_nearest(r_phi, r_phi);
         }
     }

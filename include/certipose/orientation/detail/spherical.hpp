@@ -90,16 +90,6 @@ inline void sincos_bounds_from(double l, double u, double sl, double cl, double 
     cosine = periodic_bounds_from(l, u, cl, cu, 0.0);
 }
 
-/// Both enclosures of [l, u] at once: one libm sincos per endpoint instead of a sin and a cos,
-/// and one for a point interval.
-inline void sincos_bounds_nearest(double l, double u, bounds& sine, bounds& cosine) {
-    double sl = 0, cl = 0, su = 0, cu = 0;
-    sincos_nearest(l, sl, cl);
-    if (l == u) su = sl, cu = cl;
-    else sincos_nearest(u, su, cu);
-    sincos_bounds_from(l, u, sl, cl, su, cu, sine, cosine);
-}
-
 /// sin and cos at the lower bound, upper bound and a midpoint of each of three angles, kept
 /// with the abscissa they were computed at. A tiled proof asks fov_refuted and certify_fov about
 /// one box, and each tile shares all but two of these abscissae with the box it was split from;
