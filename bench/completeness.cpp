@@ -10,7 +10,8 @@
 // off by in every direction), reported with the Euler-angle widths of that box.
 //
 //   bench_completeness [samples=6000] [modes=paper,inner,full,refine,grow,refine_grow] [every=0]
-//   (also: cuts, leaf, depth1 — one corner box per leaf). refine_grow: refinement and growth
+//   (also: cuts, leaf, depth1 — one corner box per leaf, rest2 — corner boxes of rest boxes
+//   down to two minimal pieces, the default before 3). refine_grow: refinement and growth
 //   in one 1 s budget, the most complete answer a second gives.
 // With `every` = N > 0, no table: each part's every Nth facet is solved once per mode, and the
 // totals (seconds, VALID / BOUNDARY boxes, certified volume) are printed — a broader check that
@@ -94,6 +95,7 @@ certipose::solve_options mode_options(const std::string& mode) {
     else if (mode == "inner") o.occlusion_cuts = o.leaf_corner_boxes = false;
     else if (mode == "cuts") o.leaf_corner_boxes = false;
     else if (mode == "depth1") o.corner_depth = 1;  // one corner box per leaf (before corner_depth)
+    else if (mode == "rest2") o.corner_rest_min_pieces = 2;  // rest boxes' corner boxes down to 2 pieces (before 3)
     else if (mode == "leaf") o.occlusion_cuts = false;
     else if (mode == "refine") {
         o.time_limit = std::chrono::seconds(1);

@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <span>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -542,10 +543,23 @@ TEST_CASE_TEMPLATE("paving_orientation: every VALID box passes the same sampling
     CHECK(samples >= 2000);
 }
 
+/// Octant k of a position box (bit d of k: the upper half along dimension d).
+template <class I>
+position_box<I> octant(const position_box<I>& p, std::size_t k) {
+    position_box<I> q;
+    for (std::size_t d = 0; d < 3; ++d) {
+        const double m = mid(p[d]);
+        q[d] = (k >> d) & 1 ? I(m, upper(p[d])) : I(lower(p[d]), m);
+    }
+    return q;
+}
+
 TEST_CASE_TEMPLATE("paper_orientation: a hint changes how a box is found, never its proof", I,
                    CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
     static_assert(HintedOrientationPolicy<paper_orientation, I, thin_lens_camera>);
     static_assert(!HintedOrientationPolicy<paving_orientation, I, thin_lens_camera>);
+    static_assert(BorrowingOrientationPolicy<paper_orientation, I, thin_lens_camera>);
+    static_assert(!BorrowingOrientationPolicy<paving_orientation, I, thin_lens_camera>);
     const auto cam = design_camera();
     const fov_frustum<I> frustum(cam);
     const paper_orientation policy;
@@ -557,14 +571,7 @@ TEST_CASE_TEMPLATE("paper_orientation: a hint changes how a box is found, never 
         // searches before them found, as the small boxes of one cell of ε_p do in the solver.
         const auto s = random_scenario<I>(rng, kind_of(i));
         std::vector<position_box<I>> row{s.position};
-        for (std::size_t k = 0; k < 8; ++k) {
-            position_box<I> q;
-            for (std::size_t d = 0; d < 3; ++d) {
-                const double m = mid(s.position[d]);
-                q[d] = (k >> d) & 1 ? I(m, upper(s.position[d])) : I(lower(s.position[d]), m);
-            }
-            row.push_back(q);
-        }
+        for (std::size_t k = 0; k < 8; ++k) row.push_back(octant(s.position, k));
         // Carried along the row, and hints that name nothing sensible (too wide, too narrow,
         // out of range, β narrower than φ and γ).
         paper_orientation::hint carried;
@@ -599,6 +606,80 @@ TEST_CASE_TEMPLATE("paper_orientation: a hint changes how a box is found, never 
     // neighbour's scales around this box's aim) for fewer certifications (counts, not times).
     CHECK(hinted_found * 10 >= plain_found * 9);
     CHECK(hinted_certs < plain_certs);
+}
+
+TEST_CASE_TEMPLATE("paper_orientation: a borrowed hint is tried alone, and what it gives is proven", I,
+                   CERTIPOSE_ORIENTATION_TEST_BACKENDS) {
+    const paper_orientation policy, untiled(paper_orientation_options{.tiling_budget = 1});
+    const std::size_t budget = policy.options().tiling_budget;
+    const auto cam = design_camera();
+    std::mt19937_64 rng(2027);
+    const fov_frustum<I> frustum(cam);
+    std::size_t tried = 0, found = 0, own_failed_borrowed_found = 0, failures = 0, samples = 0;
+    std::size_t whole_found = 0, own_found = 0;
+    for (std::size_t i = 0; i < 60; ++i) {
+        // The hints two searches found for a box, lent to its octants (the solver lends the hints
+        // of the cells around a box whose own search failed).
+        const auto s = random_scenario<I>(rng, kind_of(i));
+        paper_orientation::hint a, b;
+        (void)policy.orient(s.position, s.f, cam, 0.38, a);
+        position_box<I> half = s.position;
+        half[0] = I(lower(s.position[0]), mid(s.position[0]));
+        (void)policy.orient(half, s.f, cam, 0.38, b);
+        const paper_orientation::hint empty{}, odd{0.3, 0.1};  // knows nothing; β narrower than φ, γ
+        for (std::size_t k = 0; k < 8; ++k) {
+            const position_box<I> q = octant(s.position, k);
+            // Nothing usable to borrow: nothing, at no cost.
+            const std::array<const paper_orientation::hint*, 3> useless{nullptr, &empty, &odd};
+            const auto none = policy.orient_borrowed(q, s.f, cam, 0.38, std::span<const paper_orientation::hint* const>(useless));
+            CHECK(none.boxes.empty());
+            CHECK(none.certifications == 0);
+            // A hint naming the paper's box itself (scale 1), which seldom certifies: that box
+            // or nothing, never the narrower box a search would go on to find.
+            const paper_orientation::hint whole{1.0, 1.0};
+            const paper_orientation::hint* const w = &whole;
+            const auto at_whole = policy.orient_borrowed(q, s.f, cam, 0.38, std::span<const paper_orientation::hint* const>(&w, 1));
+            const auto cand = paper_candidate(q, s.f, cam, beta_contraction::none);
+            for (const auto& e : at_whole.boxes) {
+                REQUIRE(cand);
+                for (std::size_t j = 0; j < 3; ++j) {
+                    CHECK(std::abs(lower(e[j]) - lower((*cand)[j])) <= 1e-9);
+                    CHECK(std::abs(upper(e[j]) - upper((*cand)[j])) <= 1e-9);
+                }
+            }
+            whole_found += !at_whole.boxes.empty(), own_found += !policy.orient(q, s.f, cam, 0.38).boxes.empty();
+            if (!(a.scale > 0.0) && !(b.scale > 0.0)) continue;
+            const std::array<const paper_orientation::hint*, 4> lent{&a, nullptr, &b, &empty};
+            const auto r = policy.orient_borrowed(q, s.f, cam, 0.38, std::span<const paper_orientation::hint* const>(lent));
+            ++tried;
+            // The widest usable hint alone gives the same answer: the others are not searched.
+            const paper_orientation::hint* widest = a.scale >= b.scale ? &a : &b;
+            const auto alone = policy.orient_borrowed(q, s.f, cam, 0.38, std::span<const paper_orientation::hint* const>(&widest, 1));
+            CHECK(r.boxes == alone.boxes);
+            CHECK(r.certifications == alone.certifications);
+            // Its box (then one step wider), with β whole and then scaled: four tiled proofs at
+            // most, so four evaluations when a proof may not tile; a search would spend more.
+            CHECK(r.certifications <= 4 * budget);
+            CHECK(untiled.orient_borrowed(q, s.f, cam, 0.38, std::span<const paper_orientation::hint* const>(lent))
+                      .certifications <= 4);
+            CHECK(r.boxes.size() <= 1);
+            for (const auto& e : r.boxes) {
+                ++found;
+                std::size_t n = 0;
+                CHECK(policy.certify_tiled(fov_position<I>(q, s.f), e, frustum, n));
+                const auto c = sample(q, e, s.f, cam, 40, rng);
+                samples += c.samples, failures += c.failures;
+            }
+            if (!r.boxes.empty() && policy.orient(q, s.f, cam, 0.38).boxes.empty()) ++own_failed_borrowed_found;
+        }
+    }
+    MESSAGE("borrowed: " << found << " of " << tried << " boxes certified, " << own_failed_borrowed_found
+                         << " of them where the box's own search found nothing; " << samples << " sampled poses");
+    MESSAGE("the paper's box certified for " << whole_found << " octants, a search of their own for " << own_found);
+    CHECK(failures == 0);
+    CHECK(found > 0);
+    CHECK(samples >= 40 * found);
+    CHECK(whole_found < own_found);  // the check above saw searches it would have caught
 }
 
 TEST_CASE_TEMPLATE("paving_orientation finds what paper_orientation certifies (same facet, same position box)", I,
@@ -658,6 +739,8 @@ TEST_CASE("orientation: bad input throws naming the field, degenerate input is h
     singular_k(2, 2) = 1.0;
     CHECK(field_of([&] { fov_frustum<I>(singular_k, 2448, 2048); }) == "K");
     CHECK(field_of([] { paper_orientation(paper_orientation_options{.tiling_budget = 0}); }) == "tiling_budget");
+    for (const double v : {-1e-9, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+        CHECK(field_of([&] { paper_orientation(paper_orientation_options{.refine_min_volume = v}); }) == "refine_min_volume");
     CHECK(field_of([] { paving_orientation(paving_orientation_options{.max_boxes = 0}); }) == "max_boxes");
 
     // Empty boxes: nothing to certify, no exception.

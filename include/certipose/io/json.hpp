@@ -555,6 +555,7 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     settings["occlusion_cuts"] = d.settings.occlusion_cuts;
     settings["leaf_corner_boxes"] = d.settings.leaf_corner_boxes;
     settings["corner_depth"] = d.settings.corner_depth;
+    settings["corner_rest_min_pieces"] = finite(d.settings.corner_rest_min_pieces, "settings.corner_rest_min_pieces");
     if (d.settings.refine_min_width)
         settings["refine_min_width"] = finite(*d.settings.refine_min_width, "settings.refine_min_width");
     settings["grow"] = d.settings.grow;
@@ -598,6 +599,7 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     stats["seconds_growth"] = finite(s.seconds_growth, "stats.seconds_growth");
     stats["orientation_certifications"] = s.orientation_certifications;
     stats["orientation_groups"] = s.orientation_groups;
+    stats["orientation_borrowed"] = s.orientation_borrowed;
     stats["seconds_position"] = finite(s.seconds_position, "stats.seconds_position");
     stats["seconds_orientation"] = finite(s.seconds_orientation, "stats.seconds_orientation");
     stats["termination"] = to_string(s.reason);
@@ -703,6 +705,9 @@ inline result_document result_from_json(const nlohmann::json& j) {
     flag(settings, "settings", "occlusion_cuts", d.settings.occlusion_cuts);
     flag(settings, "settings", "leaf_corner_boxes", d.settings.leaf_corner_boxes);
     if (const json* v = find(settings, "corner_depth")) d.settings.corner_depth = as_count(*v, "settings.corner_depth");
+    d.settings.corner_rest_min_pieces = optional_number(settings, "settings", "corner_rest_min_pieces").value_or(2.0);
+    if (!(d.settings.corner_rest_min_pieces >= 0.0))
+        fail("settings.corner_rest_min_pieces", "must be >= 0, got " + certipose::detail::format_double(d.settings.corner_rest_min_pieces));
     d.settings.refine_min_width = optional_number(settings, "settings", "refine_min_width");
     flag(settings, "settings", "grow", d.settings.grow);
 
@@ -754,6 +759,7 @@ inline result_document result_from_json(const nlohmann::json& j) {
     count("position_merges", s.position_merges);
     count("orientation_certifications", s.orientation_certifications);
     count("orientation_groups", s.orientation_groups);
+    count("orientation_borrowed", s.orientation_borrowed);
     s.valid_volume = optional_number(stats, "stats", "valid_volume").value_or(0.0);
     s.boundary_volume = optional_number(stats, "stats", "boundary_volume").value_or(0.0);
     flag(stats, "stats", "refinement_stopped", s.refinement_stopped);

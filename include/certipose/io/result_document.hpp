@@ -59,6 +59,7 @@ struct result_document {
         double position_eps = 0, orientation_eps = 0;
         bool inner_contraction = true, occlusion_cuts = true, leaf_corner_boxes = true;  ///< solve_options of the same names
         std::size_t corner_depth = 1;  ///< solve_options::corner_depth (1 in files that do not give it)
+        double corner_rest_min_pieces = 2;  ///< solve_options::corner_rest_min_pieces (2 in files that do not give it)
         std::optional<double> refine_min_width{};               ///< set when the run refined below ε_p
         bool grow = false;                                      ///< the VALID boxes were widened
         friend bool operator==(const settings_record&, const settings_record&) = default;
@@ -111,7 +112,7 @@ result_document make_result_document(const solve_result<I>& result, const triang
     d.camera.d_max = range.max;
     d.task = {task.min_view_angle, task.max_metres_per_pixel};
     d.settings = {options.position_eps, options.orientation_eps, options.inner_contraction, options.occlusion_cuts,
-                  options.leaf_corner_boxes, options.corner_depth,
+                  options.leaf_corner_boxes, options.corner_depth, options.corner_rest_min_pieces,
                   options.refine ? std::optional<double>(options.refine->width(options.position_eps)) : std::nullopt,
                   options.grow.has_value()};
     d.boxes.reserve(result.boxes.size());

@@ -14,6 +14,7 @@
 
 #include <concepts>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "certipose/camera/camera_model.hpp"
@@ -53,6 +54,21 @@ concept HintedOrientationPolicy =
     requires(const P& p, const position_box<I>& position, const facet& f, const Camera& camera, double eps,
              typename P::hint& hint) {
         { p.orient(position, f, camera, eps, hint) } -> std::same_as<orientation_result<I>>;
+    };
+
+/// A hinted policy that can also try what the searches of neighbouring position boxes found
+/// when its own search found nothing: `p.orient_borrowed(position, facet, camera,
+/// orientation_eps, neighbours)` tries the box (some of) the hints name around this box's own
+/// aim, and nothing else. The solver asks it for a box whose own search failed in a cell of ε_p
+/// where nothing was oriented yet, with the hints of the neighbouring cells: a search stops
+/// narrowing at ε_o, while a neighbour's scale may certify a narrower box that the search never
+/// tries. The same rule as for hints: which box is found, never whether it is certified.
+template <class P, class I, class Camera>
+concept BorrowingOrientationPolicy =
+    HintedOrientationPolicy<P, I, Camera> &&
+    requires(const P& p, const position_box<I>& position, const facet& f, const Camera& camera, double eps,
+             std::span<const typename P::hint* const> neighbours) {
+        { p.orient_borrowed(position, f, camera, eps, neighbours) } -> std::same_as<orientation_result<I>>;
     };
 
 }  // namespace certipose

@@ -18,7 +18,9 @@
 // the whole orientation range (nothing was decided about aiming there) and the reason they were
 // left undecided (`classified_box::reason`, counted in `solve_stats::boundary_reasons`).
 // An orientation policy modelling HintedOrientationPolicy (paper_orientation does) gets one hint
-// per cell of ε_p: the boxes of a cell search from what their neighbours found.
+// per cell of ε_p: the boxes of a cell search from what their neighbours found; one modelling
+// BorrowingOrientationPolicy is also asked, for a box whose own search failed in a cell where
+// none certified yet, to try the hints of the cells around it.
 //
 // Budgets: `max_boxes` counts boxes of both stages. When it ends the position stage, the
 // position boxes certified so far are still oriented (each once, without further bisection), so a
@@ -43,6 +45,7 @@
 #include <cstddef>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -271,7 +274,8 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     const position_stage_options stage_options{.inner_contraction = options.inner_contraction,
                                                .occlusion_cuts = options.occlusion_cuts,
                                                .leaf_corner_boxes = options.leaf_corner_boxes,
-                                               .corner_depth = options.corner_depth};
+                                               .corner_depth = options.corner_depth,
+                                               .corner_rest_min_pieces = options.corner_rest_min_pieces};
     std::optional<position_refinement> refinement;
     if (options.refine) refinement = position_refinement{split_width, refine_deadline};
     auto stage1 = pave_positions<I, constraint_set_type, contraction_type, bisector_type, buffer_type>(
@@ -323,12 +327,46 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     };
     // The orientation search of a box, starting from what the searches in its cell of ε_p found
     // (HintedOrientationPolicy; the hint changes how fast a box is found, not its proof).
-    std::map<cell_key, typename detail::orientation_hint_of<orientation_type, I, camera_type>::type> hints;
-    const auto orient = [&](const position_box<I>& p) {
-        if constexpr (HintedOrientationPolicy<orientation_type, I, camera_type>)
-            return orientation_.orient(p, f, camera_, options.orientation_eps, hints[cell_of(p)]);
-        else
+    using hint_type = typename detail::orientation_hint_of<orientation_type, I, camera_type>::type;
+    std::map<cell_key, hint_type> hints;
+    // Cells where a search of their own certified (their hints are worth lending), and a box
+    // whose own search failed in a cell where none did yet borrows its neighbours' hints
+    // (BorrowingOrientationPolicy). Not in the paper's paving, nor for a group's hull: a hull
+    // oriented with a borrowed scale would give its members that scale instead of their own
+    // searches' (wider on idler_riser and featuretype). What is borrowed is not kept: the next
+    // box of the cell searches for itself.
+    std::set<cell_key> oriented;
+    const auto orient = [&](const position_box<I>& p, bool single) {
+        if constexpr (HintedOrientationPolicy<orientation_type, I, camera_type>) {
+            const cell_key key = cell_of(p);
+            orientation_result<I> o = orientation_.orient(p, f, camera_, options.orientation_eps, hints[key]);
+            if (!o.boxes.empty()) {
+                oriented.insert(key);
+                return o;
+            }
+            if constexpr (BorrowingOrientationPolicy<orientation_type, I, camera_type>) {
+                if (single && past_paper && !oriented.contains(key)) {
+                    std::array<const hint_type*, 26> lent{};
+                    std::size_t n = 0;
+                    for (long long dx = -1; dx <= 1; ++dx)
+                        for (long long dy = -1; dy <= 1; ++dy)
+                            for (long long dz = -1; dz <= 1; ++dz) {
+                                const cell_key k{key[0] + dx, key[1] + dy, key[2] + dz};
+                                if (k != key && oriented.contains(k)) lent[n++] = &hints.at(k);
+                            }
+                    if (n > 0) {
+                        orientation_result<I> b = orientation_.orient_borrowed(
+                            p, f, camera_, options.orientation_eps, std::span<const hint_type* const>(lent.data(), n));
+                        b.certifications += o.certifications;
+                        if (!b.boxes.empty()) ++st.orientation_borrowed;
+                        return b;
+                    }
+                }
+            }
+            return o;
+        } else {
             return orientation_.orient(p, f, camera_, options.orientation_eps);
+        }
     };
     {
         // Small position boxes in one cell of ε_p (pieces, corner boxes, refined leaves) are
@@ -361,7 +399,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             position_box<I> h = valid[members[0]];
             for (std::size_t i : members) h = hull(h, valid[i]);
             ++done;
-            const orientation_result<I> o = orient(h);
+            const orientation_result<I> o = orient(h, false);
             st.orientation_certifications += o.certifications;
             if (!o.boxes.empty()) {
                 ++st.orientation_groups;
@@ -414,7 +452,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
             continue;
         }
         ++done;
-        const orientation_result<I> o = orient(p);
+        const orientation_result<I> o = orient(p, true);
         st.orientation_certifications += o.certifications;
         if (!o.boxes.empty()) {
             for (const auto& e : o.boxes) {

@@ -66,6 +66,9 @@ struct position_stage_options {
     /// Corner boxes split off one leaf in a row: the rest of a leaf's corner box may give one
     /// of its own, and so on, this many times (a staircase along the boundary; at most 255).
     std::size_t corner_depth = 2;
+    /// A rest box gives a corner box only when no side of it is thinner than this many
+    /// `min_piece` (solve_options::corner_rest_min_pieces).
+    double corner_rest_min_pieces = 3.0;
     /// Look for OCCLUDED proofs (which prune a box and its subtree) on the boxes the bisector
     /// splits (position_separator::prove_occluded): without occlusion cuts (the paper's paving)
     /// on every such box, with them only as `occluded_proofs_with_cuts` says.
@@ -334,13 +337,14 @@ private:
     }
 
     /// Is b worth a corner box of its own? A leaf's first always; a rest box (a slab of a leaf
-    /// around its corner box) only when no side of it is thinner than two minimal pieces: thin
-    /// slabs gave many boxes for little volume (the four reference cases at corner_depth 2:
-    /// 25 % fewer VALID boxes, a median share 62 % instead of 64 %).
+    /// around its corner box) only when no side of it is thinner than
+    /// `corner_rest_min_pieces` minimal pieces: thin slabs gave many boxes for little volume
+    /// (the four reference cases at corner_depth 2, 2 pieces against none: 25 % fewer VALID
+    /// boxes, a median share 62 % instead of 64 %; 3 against 2: docs/completeness.md).
     bool stair_worth(const box& b, const state& s) const {
         if (s.rest == 0) return true;
         for (std::size_t k = 0; k < 3; ++k)
-            if (upper(b[k]) - lower(b[k]) < 2 * min_piece) return false;
+            if (upper(b[k]) - lower(b[k]) < options.corner_rest_min_pieces * min_piece) return false;
         return true;
     }
 

@@ -56,6 +56,8 @@ struct solve_stats {
     double seconds_growth = 0;
     std::size_t orientation_certifications = 0;  ///< 6D interval certifications attempted
     std::size_t orientation_groups = 0;  ///< cells of small position boxes oriented together
+    /// position boxes oriented with a neighbouring cell's hint after their own search failed
+    std::size_t orientation_borrowed = 0;
     double seconds_position = 0, seconds_orientation = 0, seconds = 0;
     termination reason = termination::completed;
 };
