@@ -56,7 +56,7 @@ struct arguments {
     std::optional<double> refine;
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
-    std::optional<double> facet_time_limit, time_limit;
+    std::optional<double> facet_time_limit, time_limit, corner_rest;
 };
 
 /// The parsed command line, or the exit code (0 after --help, 2 after a usage error).
@@ -65,7 +65,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "DIR/summary.json and DIR/boxes.jsonl (DESIGN.md section 6).",
                  "certipose-part"};
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
-        facet_time, time_limit, max_boxes, refine, corner_depth, occlusion = "aabb";
+        facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb";
     bool boundary = false, quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
@@ -85,6 +85,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "pave as the paper does: bisect partly valid boxes, no inner contraction, occlusion cuts or corner boxes");
     app.add_option("--corner-depth", corner_depth,
                    "corner boxes one undecided leaf may give in a row, 1-8 (default 2; 1 writes fewer boxes)")->type_name("N");
+    app.add_option("--corner-rest", corner_rest,
+                   "a rest box gives a corner box only when each side is at least PIECES minimal pieces "
+                   "(eps/10; default 3, 2 certifies more, slower)")->type_name("PIECES");
     app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
@@ -108,6 +111,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!refine.empty()) a.refine = parse_double("--refine", refine, "a positive finite number of seconds");
         a.paper_paving = paper_paving;
         if (!corner_depth.empty()) a.corner_depth = parse_corner_depth(corner_depth);
+        if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
         if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
         std::error_code ec;
@@ -161,6 +165,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     if (args.facet_time_limit) opt.facet.time_limit = seconds(*args.facet_time_limit);
     opt.facet.inner_contraction = opt.facet.occlusion_cuts = opt.facet.leaf_corner_boxes = !args.paper_paving;
     if (args.corner_depth) opt.facet.corner_depth = *args.corner_depth;
+    if (args.corner_rest) opt.facet.corner_rest_min_pieces = *args.corner_rest;
     if (args.refine) opt.facet.refine = certipose::refinement{.time_limit = seconds(*args.refine)};
     if (args.grow) opt.facet.grow = certipose::growth_options{};
     if (args.time_limit) opt.time_limit = seconds(*args.time_limit);

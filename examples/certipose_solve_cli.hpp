@@ -63,6 +63,7 @@ struct arguments {
     std::optional<double> time_limit_seconds;           ///< --time-limit budget
     bool paper_paving = false;     ///< --paper-paving: no inner contraction, occlusion cuts or corner boxes
     std::optional<std::size_t> corner_depth;            ///< --corner-depth: corner boxes per leaf in a row
+    std::optional<double> corner_rest;                  ///< --corner-rest: a rest box's narrowest side for a corner box, in minimal pieces
     std::optional<double> refine_seconds;               ///< --refine: anytime refinement budget
     bool grow = false;             ///< --grow: widen the VALID boxes
     bool quiet = false;            ///< --quiet: no summary, no progress
@@ -78,6 +79,7 @@ namespace detail {
 using certipose_program::check_output;
 using certipose_program::one_line;
 using certipose_program::parse_corner_depth;
+using certipose_program::parse_corner_rest;
 using certipose_program::parse_count;
 using certipose_program::parse_double;
 using certipose_program::usage_error;
@@ -92,7 +94,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                  "DESIGN.md section 6 and optionally a PLY of the boxes.",
                  "certipose-solve"};
     std::string mesh, camera, output, ply, facet, position_eps, orientation_eps, scale,
-        max_boxes, time_limit, refine, corner_depth, occlusion = "aabb";
+        max_boxes, time_limit, refine, corner_depth, corner_rest, occlusion = "aabb";
     bool quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")
         ->type_name("PART")
@@ -131,6 +133,10 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
     app.add_option("--corner-depth", corner_depth,
                    "corner boxes one undecided leaf may give in a row, 1-8 (default 2; 1 writes fewer boxes)")
         ->type_name("N");
+    app.add_option("--corner-rest", corner_rest,
+                   "a rest box gives a corner box only when each side is at least PIECES minimal pieces "
+                   "(eps/10; default 3, 2 certifies more, slower)")
+        ->type_name("PIECES");
     app.add_option("--refine", refine,
                    "keep refining below position-eps, largest undecided box first, for SECONDS")
         ->type_name("SECONDS");
@@ -190,6 +196,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
             a.refine_seconds = detail::parse_double("--refine", refine, "a positive finite number of seconds");
         a.paper_paving = paper_paving;
         if (!corner_depth.empty()) a.corner_depth = detail::parse_corner_depth(corner_depth);
+        if (!corner_rest.empty()) a.corner_rest = detail::parse_corner_rest(corner_rest);
         a.grow = grow;
         a.quiet = quiet;
         return {std::move(a), exit_ok};

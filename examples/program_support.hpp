@@ -132,6 +132,18 @@ inline std::size_t parse_corner_depth(const std::string& text) {
     return v;
 }
 
+/// --corner-rest: solve_options::corner_rest_min_pieces, a finite number >= 0.
+inline double parse_corner_rest(const std::string& text) {
+    double v = 0.0;
+    const char* first = text.data();
+    const char* last = text.data() + text.size();
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc{} || end != last || text.empty())
+        throw usage_error("--corner-rest: expected a number >= 0, got '" + text + "'");
+    if (!(v >= 0.0) || !std::isfinite(v)) throw usage_error("--corner-rest: expected a finite number >= 0, got " + text);
+    return v;
+}
+
 /// The file will be written at the end of a possibly long run: fail now if it cannot be.
 inline void check_output(const std::string& option, const std::filesystem::path& p) {
     std::error_code ec;

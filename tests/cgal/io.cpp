@@ -198,6 +198,11 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
              o.corner_depth = 0;
              o.validate();
          }},
+        {"bad corner rest", [&] {
+             certipose::solve_options o;
+             o.corner_rest_min_pieces = -1;
+             o.validate();
+         }},
         {"output directory missing", [&] { certipose::write_file_atomically(dir / "no" / "result.json", "{}"); }},
         {"deployment coverage out of range", [&] {
              certipose::deployment_options o;

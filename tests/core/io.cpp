@@ -937,7 +937,8 @@ TEST_CASE("certipose-solve: a full command line parses into the arguments") {
 
     auto r = run_cli({"--mesh", mesh, "--facet", "17", "--camera", cam, "--position-eps", "0.1",
                       "--orientation-eps", "3.8e-1", "--out", out, "--ply", ply, "--occlusion", "boolean",
-                      "--scale", "0.001", "--max-boxes", "5000", "--time-limit", "2.5", "--quiet"});
+                      "--scale", "0.001", "--max-boxes", "5000", "--time-limit", "2.5", "--corner-rest", "2",
+                      "--quiet"});
     REQUIRE_MESSAGE(r.outcome.args, r.err);
     const auto& a = *r.outcome.args;
     CHECK(a.mesh == mesh);
@@ -951,6 +952,7 @@ TEST_CASE("certipose-solve: a full command line parses into the arguments") {
     CHECK(a.scale == 0.001);
     CHECK(a.max_boxes == 5000u);
     CHECK(a.time_limit_seconds == 2.5);
+    CHECK(a.corner_rest == 2.0);
     CHECK(a.quiet);
     CHECK(r.err.empty());
 
@@ -1007,6 +1009,8 @@ TEST_CASE("certipose-solve: every command-line mistake is one error line and exi
         {with("--camera", (dir.path / "nope.json").string()), "--camera"},
         {with("--facet", "-1"), "--facet"},
         {with("--facet", "1.5"), "--facet: expected an integer >= 0, got '1.5'"},
+        {with("--corner-rest", "-1"), "--corner-rest: expected a finite number >= 0, got -1"},
+        {with("--corner-rest", "three"), "--corner-rest: expected a number >= 0, got 'three'"},
         {with("--facet", "99999999999999999999999"), "--facet: 99999999999999999999999 is too large"},
         {with("--position-eps", "0"), "--position-eps: must be a positive finite number of metres, got 0"},
         {with("--position-eps", "abc"), "--position-eps: expected a positive finite number of metres, got 'abc'"},

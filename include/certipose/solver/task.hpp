@@ -125,9 +125,10 @@ struct solve_options {
     /// A rest box (what is left of a box beside its corner box) gives a corner box of its own
     /// only when none of its sides is thinner than this many minimal pieces (ε_p / 10): thin
     /// slabs give many small boxes for little volume, and orienting them is most of a sliver
-    /// facet's time. 3 (the default) against 2: plate_holes (facet 7) 24 % faster, 1.6–2.4
-    /// points less of the true valid positions certified on idler_riser and featuretype
-    /// (docs/completeness.md). 0: every rest box while `corner_depth` allows.
+    /// facet's time. 3 (the default) against 2: ~18 % less time on plate_holes (facet 7), for
+    /// 1.6–4.5 points less of the true valid positions certified on the four reference cases
+    /// (angle_block 64.5 → 60.0 %; docs/completeness.md). 0: every rest box while
+    /// `corner_depth` allows.
     double corner_rest_min_pieces = 3.0;
     /// Anytime refinement below ε_p (see `refinement`); unset: the paper's ε_p stopping rule.
     std::optional<refinement> refine{};
