@@ -96,13 +96,20 @@ struct usage_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-inline double parse_double(const std::string& option, const std::string& text, const char* what) {
+/// The number `text` spells (all of it), or "OPTION: expected WHAT, got 'TEXT'".
+inline double parse_number(const std::string& option, const std::string& text, const char* what) {
     double v = 0.0;
     const char* first = text.data();
     const char* last = text.data() + text.size();
     const auto [end, ec] = std::from_chars(first, last, v);
     if (ec != std::errc{} || end != last || text.empty())
         throw usage_error(option + ": expected " + what + ", got '" + text + "'");
+    return v;
+}
+
+/// A positive finite number.
+inline double parse_double(const std::string& option, const std::string& text, const char* what) {
+    const double v = parse_number(option, text, what);
     if (!(v > 0.0) || !std::isfinite(v))
         throw usage_error(option + ": must be " + what + ", got " + text);
     return v;
@@ -134,12 +141,7 @@ inline std::size_t parse_corner_depth(const std::string& text) {
 
 /// --corner-rest: solve_options::corner_rest_min_pieces, a finite number >= 0.
 inline double parse_corner_rest(const std::string& text) {
-    double v = 0.0;
-    const char* first = text.data();
-    const char* last = text.data() + text.size();
-    const auto [end, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc{} || end != last || text.empty())
-        throw usage_error("--corner-rest: expected a number >= 0, got '" + text + "'");
+    const double v = parse_number("--corner-rest", text, "a number >= 0");
     if (!(v >= 0.0) || !std::isfinite(v)) throw usage_error("--corner-rest: expected a finite number >= 0, got " + text);
     return v;
 }
