@@ -285,6 +285,17 @@ TEST_CASE("read_mesh: errors name the file") {
         CHECK_THROWS_AS(certipose::read_mesh(
                             write_text("badidx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")),
                         certipose::error);
+        // Without the edge count CGAL takes the next number in the file for it and doubles it in
+        // an int (undefined behaviour past 2^30: found by tests/fuzz); with an edge count that large
+        // it does the same. Both are named before CGAL reads a byte.
+        const auto no_edges = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("no_edges.off", "OFF\n0 0\n2147483647\n"));
+        });
+        CHECK(contains(no_edges.what(), "no_edges.off line 2: expected the vertex, face and edge counts"));
+        const auto many_edges = thrown<certipose::io_error>([&] {
+            certipose::read_mesh(write_text("many_edges.off", "OFF\n3 1 1073741824\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+        });
+        CHECK(contains(many_edges.what(), "edge count 1073741824 is beyond what CGAL reads"));
     }
     SUBCASE("NaN coordinate") {
         // Binary STL: the float NaN reaches the mesh validation, which names the vertex.

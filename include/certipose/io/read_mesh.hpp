@@ -134,11 +134,12 @@ private:
 /// Screens an OFF file before CGAL reads it. CGAL 5.5's OFF scanner reads past its buffers on
 /// hostile input (a COFF vertex without its colour entries, a face with a colour index, an index
 /// beyond 2^64 converted from a double: found by tests/fuzz), so only files whose every line has
-/// the expected shape reach it: an OFF or COFF header (counts on it or on the next line), vertex
-/// lines of 3 finite numbers (COFF: 3 more or 4 more for the colour), face lines of a count n ≥ 1,
-/// n vertex indices in range and no colour or 3 or 4 colour values in [0, 255]. Counts beyond
-/// what the file's size can hold are refused before anything is allocated. Returns why the file
-/// is refused ("PATH line N: ..."), or nothing.
+/// the expected shape reach it: an OFF or COFF header (the vertex, face and edge counts on it or
+/// on the next line, the edge count one CGAL can double in an int), vertex lines of 3 finite
+/// numbers (COFF: 3 more or 4 more for the colour), face lines of a count n ≥ 1, n vertex indices
+/// in range and no colour or 3 or 4 colour values in [0, 255]. Counts beyond what the file's size
+/// can hold are refused before anything is allocated. Returns why the file is refused
+/// ("PATH line N: ..."), or nothing.
 inline std::string screen_off(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::error_code ec;
@@ -201,10 +202,15 @@ inline std::string screen_off(const std::filesystem::path& path) {
     } else if (commented) {
         return where() + "a comment on the header line";
     }
+    // All three counts, on one line: CGAL reads the edge count wherever the next number is (a
+    // vertex's coordinate, a face's count, a stray line after the faces) and doubles it in an int.
     std::uint64_t nv = 0, nf = 0, ne = 0;
-    if (words.size() < first + 2 || words.size() > first + 3 || !count(words[first], nv) || !count(words[first + 1], nf) ||
-        (words.size() == first + 3 && !count(words[first + 2], ne)))
+    if (words.size() != first + 3 || !count(words[first], nv) || !count(words[first + 1], nf) ||
+        !count(words[first + 2], ne))
         return where() + "expected the vertex, face and edge counts";
+    constexpr std::uint64_t int_max = std::numeric_limits<int>::max();
+    if (ne > int_max / 2) return where() + "edge count " + std::to_string(ne) + " is beyond what CGAL reads (at most " +
+                                 std::to_string(int_max / 2) + ")";
     // A vertex takes at least 6 bytes ("0 0 0\n"), a face 8: more than the file holds is a lie.
     if (nv > bytes / 6 + 1 || nf > bytes / 8 + 1 || ne > bytes)
         return where() + "counts " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
