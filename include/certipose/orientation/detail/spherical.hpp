@@ -70,9 +70,6 @@ inline bounds periodic_bounds_from(double l, double u, double fl, double fu, dou
 inline bounds cos_bounds_nearest(double l, double u) {
     return periodic_bounds_from(l, u, std::cos(l), l == u ? std::cos(l) : std::cos(u), 0.0);
 }
-inline bounds sin_bounds_nearest(double l, double u) {
-    return periodic_bounds_from(l, u, std::sin(l), l == u ? std::sin(l) : std::sin(u), std::numbers::pi / 2);
-}
 /// sin x and cos x (call inside a nearest scope): one libm sincos where there is one (glibc
 /// computes both with the same code as sin and cos, to the same values), else both.
 inline void sincos_nearest(double x, double& s, double& c) {
