@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stop_token>
@@ -888,6 +889,40 @@ TEST_CASE("run_from paves several boxes with their states as one run") {
     CHECK(both.stats.valid_volume == doctest::Approx(separate_volume).epsilon(1e-12));
     const std::vector<shell_separator::state> one{shell_separator::state{}};
     CHECK_THROWS_AS(p.run_from(halves, one), certipose::invalid_argument);
+}
+
+namespace {
+// An inner separator whose state owns heap memory: a tag given to the root box and inherited.
+struct tagging_separator {
+    struct state {
+        std::shared_ptr<const std::vector<int>> tag;
+        friend bool operator==(const state&, const state&) = default;
+    };
+    verdict separate(interval_box<certipose::boost_interval, 3>&, state& s,
+                     certipose::piece_sink<interval_box<certipose::boost_interval, 3>, state>&) {
+        if (!s.tag) s.tag = std::make_shared<const std::vector<int>>(std::vector<int>{42, 43});
+        return verdict::undecided;
+    }
+};
+}  // namespace
+
+TEST_CASE("run_from may be given the paver's own boundary_states(): they are copied before the run") {
+    // The refinement idiom: re-pave a run's BOUNDARY boxes with their states on the same paver.
+    // The paver once cleared its states before reading them (ASan: heap-use-after-free).
+    using I = certipose::boost_interval;
+    using box = interval_box<I, 3>;
+    certipose::paver<box, certipose::identity, tagging_separator, largest_first> p(certipose::identity{},
+                                                                                 tagging_separator{}, largest_first(2.0));
+    const auto first = p.run(box::from_bounds({{{0, 4}, {0, 4}, {0, 4}}}));
+    REQUIRE(first.boundary.size() == 64);  // each side halved twice: 4 → 2 → 1
+    p.bisector() = largest_first(0.5);
+    const auto again = p.run_from(first.boundary, p.boundary_states());
+    REQUIRE(p.boundary_states().size() == again.boundary.size());
+    CHECK(again.boundary.size() > first.boundary.size());
+    for (const auto& st : p.boundary_states()) {
+        REQUIRE(st.tag);
+        CHECK(*st.tag == std::vector<int>{42, 43});
+    }
 }
 
 TEST_CASE("largest_volume_first decides the largest boxes first: a budget leaves only small ones") {

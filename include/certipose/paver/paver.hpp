@@ -443,7 +443,6 @@ public:
 
         paving<Box> out;
         paver_stats& st = out.stats;
-        boundary_states_.clear();
         typename Buffer::template buffer<entry> list;
         const bool tree = options_.record_tree;
         for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -454,6 +453,8 @@ public:
             }
             list.push(entry{boxes[i], node, bisection_context{}, states.empty() ? state_type{} : states[i]});
         }
+        // Only now: `states` may be this paver's own boundary_states() of its last run.
+        boundary_states_.clear();
         st.peak_pending = list.size();
 
         termination reason = termination::completed;

@@ -293,6 +293,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     st.position_boundary = stage1.boxes.boundary.size() + stage1.boxes.pending.size();
     st.reason = ps.reason;
     st.refinement_stopped = stage1.refinement_stopped;
+    st.refinement_passes = stage1.counters.refinement_passes;
     st.seconds_position = seconds();
     if (options.keep_tree) out.tree = std::move(stage1.boxes.tree);
 

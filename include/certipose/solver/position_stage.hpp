@@ -88,6 +88,7 @@ struct position_stage_counters {
     std::size_t occlusion_pieces = 0;  ///< VALID pieces carved off occlusion-PARTIAL boxes
     std::size_t corner_boxes = 0;      ///< VALID corner boxes split off leaves
     std::size_t shadow_walks = 0;      ///< tree walks collecting the shadows of possible blockers
+    std::size_t refinement_passes = 0; ///< refinement passes that ran (position_refinement)
 };
 
 namespace detail {
@@ -114,8 +115,9 @@ struct position_separator {
         /// stayed undecided (the BOUNDARY box's reason), found by the same evaluation as the test.
         std::optional<boundary_reason> why{};
         /// The shadows of every triangle that may block a sight line from the box (found for
-        /// an ancestor: one tree walk serves all the boxes below it); null until needed.
-        std::shared_ptr<const shadow_list<I>> shadows{};
+        /// an ancestor: one tree walk serves all the boxes below it); null until needed. The
+        /// set owns the cache it points into: the state may outlive this separator (refinement).
+        std::shared_ptr<const shadow_set<I>> shadows{};
         /// After a walk for shadows gave up (too many possible blockers, or not strictly in
         /// front of the facet): the largest width of the box it walked, or 1.25 times that for
         /// the whole box of a carving, whose pieces are often much thinner (see separate); 0:
@@ -134,7 +136,9 @@ struct position_separator {
     position_stage_options options;
     double min_piece;
     position_stage_counters* count;
-    shadow_cache<I> cache{};
+    /// Prepared shadows by triangle, shared by the separators of one facet's passes (a copy of
+    /// a separator shares it too: one facet's paving runs on one thread).
+    std::shared_ptr<shadow_cache<I>> cache = std::make_shared<shadow_cache<I>>();
     std::vector<std::size_t> found_{};  // the triangles one walk names, and their shadows
     shadow_list<I> named_{};            // (kept: no allocation per walk)
 
@@ -189,7 +193,7 @@ struct position_separator {
                     if (leaf && options.leaf_corner_boxes && s.rest < options.corner_depth &&
                         see(b, s, false) != visibility::occluded && (s.visible || s.shadows))
                         return staircase(b, s, sink, [&](const box& q) {
-                            return set->test(q) == verdict::satisfied && (s.visible || outside(*s.shadows, q));
+                            return set->test(q) == verdict::satisfied && (s.visible || outside(s.shadows->list, q));
                         }, [&] { s.why = undecided_constraint<I>(*set, b); });
                     return verdict::undecided;
                 }
@@ -206,7 +210,7 @@ struct position_separator {
         if (!(blocked == b))
             count->occlusion_pieces += carve(b, blocked, min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
         if (leaf && options.leaf_corner_boxes)
-            return staircase(b, s, sink, [&](const box& q) { return outside(*s.shadows, q); }, [] {});
+            return staircase(b, s, sink, [&](const box& q) { return outside(s.shadows->list, q); }, [] {});
         return verdict::undecided;
     }
 
@@ -278,11 +282,12 @@ private:
         }
         named_.clear();
         for (const std::size_t triangle : found_)
-            named_.push_back(&cache.get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
-        auto list = std::make_shared<shadow_list<I>>();
-        reach = reach_in(b, named_, *list, covered, need_covered);
-        if (list->empty()) s.visible = true;
-        else s.shadows = std::move(list);
+            named_.push_back(&cache->get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
+        auto found = std::make_shared<shadow_set<I>>();
+        found->storage = cache;
+        reach = reach_in(b, named_, found->list, covered, need_covered);
+        if (found->list.empty()) s.visible = true;
+        else s.shadows = std::move(found);
         return true;
     }
 
@@ -330,9 +335,9 @@ private:
     /// shared with other boxes, so it is copied).
     static box shadow_hull(const box& b, state& s, bool& covered, bool need_covered) {
         shadow_list<I> kept;
-        const box reach = reach_in(b, *s.shadows, kept, covered, need_covered);
-        if (!kept.empty() && 2 * kept.size() <= s.shadows->size())
-            s.shadows = std::make_shared<const shadow_list<I>>(std::move(kept));
+        const box reach = reach_in(b, s.shadows->list, kept, covered, need_covered);
+        if (!kept.empty() && 2 * kept.size() <= s.shadows->list.size())
+            s.shadows = std::make_shared<const shadow_set<I>>(shadow_set<I>{s.shadows->storage, std::move(kept)});
         return reach;
     }
 
@@ -461,8 +466,10 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
     }
     auto contractor = Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set});
     using separator = detail::position_separator<Set, decltype(contractor), Occlusion, Bisector, I>;
+    // One shadow cache for every pass: the states a pass hands the next hold shadows from it.
+    const auto shadows = std::make_shared<detail::shadow_cache<I>>();
     separator sep{&set, std::move(contractor), &occlusion, facet_index, Bisector(position_eps), stage,
-                  stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters};
+                  stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters, shadows};
     paver<position_box<I>, identity, separator, Bisector, Buffer> p(identity{}, std::move(sep), Bisector(position_eps),
                                                                     options);
     out.boxes = p.run(out.initial_box, stop);
@@ -532,10 +539,11 @@ position_stage_result<I> pave_positions(const position_problem& problem, std::si
             again.max_boxes = options.max_boxes > st.boxes ? options.max_boxes - st.boxes : 1;
             separator fine{&set, Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set}), &occlusion,
                            facet_index, Bisector(refine->min_width), fine_stage,
-                           stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters};
+                           stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters, shadows};
             paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(
                 identity{}, std::move(fine), Bisector(refine->min_width), again);
             auto more = q.run_from(out.boxes.boundary, states, stop);
+            ++out.counters.refinement_passes;
             const auto now = std::chrono::steady_clock::now();
             out.refinement_stopped = more.stats.reason == termination::deadline && refine->deadline &&
                                      now >= *refine->deadline && !(options.deadline && now >= *options.deadline);

@@ -51,6 +51,9 @@ struct solve_stats {
     double valid_volume = 0, boundary_volume = 0;
     /// The refinement's own time limit ended the position stage (solve_options::refine).
     bool refinement_stopped = false;
+    /// Refinement passes that ran (0–2): the BOUNDARY boxes the constraint set left undecided,
+    /// then those occlusion left PARTIAL, which start from the first pass's states.
+    std::size_t refinement_passes = 0;
     /// solve_options::grow: pairs of VALID boxes merged, boxes widened by growth.
     std::size_t merges = 0, grown = 0;
     double seconds_growth = 0;

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -127,9 +128,22 @@ struct prepared_shadow {
 
 /// The shadows of the triangles that may block a sight line from some box, shared by the boxes
 /// inside it (any triangle that may block from a sub-box may block from the box). They point
-/// into a shadow_cache.
+/// into a shadow_cache: a list that outlives the call it was made in is a shadow_set.
 template <Interval I>
 using shadow_list = std::vector<const prepared_shadow<I>*>;
+
+template <Interval I>
+class shadow_cache;
+
+/// A shadow_list together with the cache its pointers point into. A box's state carries its
+/// shadows beyond the paver that found them (a refinement pass paves the BOUNDARY boxes of the
+/// pass before, with their states): the set keeps the storage alive for as long as any state
+/// holds it, so no certificate can outlive the shadows it was proved with.
+template <Interval I>
+struct shadow_set {
+    std::shared_ptr<const shadow_cache<I>> storage;
+    shadow_list<I> list;
+};
 
 
 /// Call under a rounding_guard<I>.
