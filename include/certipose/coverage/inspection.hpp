@@ -84,6 +84,8 @@ public:
                 corner_angle_ = std::max(corner_angle_, std::atan2(ray.head<2>().norm(), ray.z()));
             }
     }
+    /// A temporary solver would be destroyed before `inspect` reads it: refused at compile time.
+    explicit facet_inspector(const solver_type&& solver) = delete;
 
     /// C(B) and P(B) for the 6D box (see the header comment). Throws invalid_argument("box") for
     /// an empty or unbounded box.

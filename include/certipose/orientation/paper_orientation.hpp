@@ -467,7 +467,9 @@ private:
         orientation_result<I> out;
         if (!detail::orientation::checked_orient_arguments("paper_orientation", position, f, orientation_eps)) return out;
         const rounding_guard<I> guard{};
-        const fov_frustum<I>& frustum = frustum_of<I>(camera);
+        // A copy: frustum_of's one-entry cache is replaced by the next camera asked for on this
+        // thread, which a user's policy wrapping this one may do while the search runs.
+        const fov_frustum<I> frustum = frustum_of<I>(camera);
         const auto aim = nominal_aim(position, f);
         const beta_contraction beta = options_.beta_acid  ? beta_contraction::hc4_acid
                                       : options_.beta_hc4 ? beta_contraction::hc4
