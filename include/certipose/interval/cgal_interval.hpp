@@ -27,7 +27,19 @@ inline bool is_empty(const cgal_interval& a) noexcept;
 class cgal_interval {
 public:
     using base_type = CGAL::Interval_nt<false>;
-    using guard = CGAL::Protect_FPU_rounding<true>;
+    /// CGAL's guard writes only the rounding field of MXCSR: the subnormals scope, made first
+    /// and ended last, clears flush-to-zero and denormals-are-zero around it (a host linked
+    /// with -ffast-math sets them, and a flushed upper bound is below the true value).
+    class guard {
+    public:
+        guard() noexcept {}  // NOLINT: user-provided, so that `const guard g;` is valid
+        guard(const guard&) = delete;
+        guard& operator=(const guard&) = delete;
+
+    private:
+        detail::subnormals_scope subnormals_;
+        CGAL::Protect_FPU_rounding<true> rounding_;
+    };
 
     cgal_interval() : v_(0.0) {}
     template <class U>
