@@ -1,6 +1,6 @@
 // Shared by the solver test files: the sampling check of VALID boxes against every constraint
-// of DESIGN.md §3 with the independent plain-double evaluator and ray caster
-// (verify/point_check.hpp). The solver tests are split over three translation units because
+// of DESIGN.md §3 with the independent evaluator and ray caster (verify/point_check.hpp), which
+// decides close calls exactly. The solver tests are split over three translation units because
 // each pipeline instantiation costs a lot to optimise at -O2 and two cores build them in parallel.
 #pragma once
 #include <doctest/doctest.h>
@@ -38,12 +38,15 @@ inline const sample_part& part() {
 
 struct sampling_report {
     std::size_t valid_boxes = 0, samples = 0, violations = 0;
-    std::size_t corners = 0;  ///< of `samples`, box corners
+    std::size_t corners = 0;      ///< of `samples`, box corners
+    std::size_t exact = 0;        ///< of `samples`, poses a constraint of which needed the exact decision
+    std::size_t undecidable = 0;  ///< of `samples`, poses on a boundary even the exact decision left open
 };
 
 /// Samples `per_box` random poses in every VALID box, and its 64 corners, and checks them
-/// against everything. Corners are judged with a relative tolerance of 1e-9: carved boxes touch
-/// a constraint boundary to within rounding (verify::tolerance); random poses are judged exactly.
+/// against everything, all exactly: carved boxes touch a constraint boundary, and their corners
+/// lie on it or within rounding of it, where only exact arithmetic tells a violation of a few
+/// ulps from none (verify::exact_stats counts how many poses needed it).
 /// With `max_boxes`, a random subset of that many VALID boxes (each equally likely) is checked.
 template <class I, CameraModel Camera>
 sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh& mesh, const Camera& camera,
@@ -77,9 +80,15 @@ sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh&
         region.extend(Eigen::Vector3d(lower(cb.box.position[0]), lower(cb.box.position[1]), lower(cb.box.position[2])));
         region.extend(Eigen::Vector3d(upper(cb.box.position[0]), upper(cb.box.position[1]), upper(cb.box.position[2])));
         const auto near = all.within(region);
+        const auto count_exact = [&](const verify::exact_stats& st) {
+            rep.exact += st.exact > 0;
+            rep.undecidable += st.undecidable > 0;
+        };
         const auto check = [&](const verify::pose& x) {
-            const auto v = verify::check_pose(x, f, view, min_view_angle, &near, targets);
+            verify::exact_stats st;
+            const auto v = verify::check_pose(x, f, view, min_view_angle, &near, targets, {}, &st);
             ++rep.samples;
+            count_exact(st);
             if (v.any()) {
                 ++rep.violations;
                 if (rep.violations <= 3)
@@ -105,13 +114,16 @@ sampling_report check_valid_boxes(const solve_result<I>& r, const triangle_mesh&
             // position corner, the field of view at each of its 8 orientation corners.
             const auto all_corners = verify::corners(bounds);
             for (std::size_t pc = 0; pc < 8; ++pc) {
+                verify::exact_stats pos_st;
                 const auto pos = verify::check_position(all_corners[pc].position, f, view.d_min, view.d_max,
-                                                        min_view_angle, &near, targets, {1e-9});
+                                                        min_view_angle, &near, targets, {}, &pos_st);
                 for (std::size_t oc = 0; oc < 8; ++oc) {
                     const verify::pose& x = all_corners[pc + 8 * oc];
                     verify::violations v = pos;
-                    v.fov = !verify::fov_ok(x, f, view, {1e-9});
+                    verify::exact_stats st = pos_st;
+                    v.fov = !verify::fov_ok(x, f, view, {}, &st);
                     ++rep.samples, ++rep.corners;
+                    count_exact(st);
                     if (v.any()) {
                         ++rep.violations;
                         if (rep.violations <= 3)

@@ -65,5 +65,3 @@
 
 #include "certipose/part/part_solver.hpp"
 #include "certipose/part/selection.hpp"
-
-#include "certipose/verify/point_check.hpp"

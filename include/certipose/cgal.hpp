@@ -3,7 +3,8 @@
 // <certipose/certipose.hpp> plus what needs CGAL: the certified occlusion policies
 // (`aabb_occlusion`, the default, and the paper's `boolean_occlusion`), `read_mesh` for OFF, OBJ,
 // PLY and STL, and the `cgal_interval` backend. So `certipose::pose_solver<>` works after this
-// one include.
+// one include. Also the independent sampling check (verify/point_check.hpp), which decides close
+// calls with GMP and MPFR, as CGAL does.
 //
 // Compile time: header-only, a translation unit that runs the default pipeline parses CGAL and
 // compiles the pipeline itself. Linking `certipose::precompiled` instead of `certipose::cgal`
@@ -20,5 +21,6 @@
 #include "certipose/io/read_mesh.hpp"
 #include "certipose/occlusion/cgal_aabb_occlusion.hpp"
 #include "certipose/occlusion/cgal_boolean_occlusion.hpp"
+#include "certipose/verify/point_check.hpp"
 
 #include "certipose/detail/precompiled.hpp"

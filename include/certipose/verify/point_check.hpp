@@ -3,11 +3,15 @@
 //
 // This is deliberately NOT the certified code path: no intervals, no contractors, no CGAL — a
 // second implementation written straight from DESIGN.md, so that sampling random poses inside
-// the boxes the solver calls VALID can catch a bug in the certified path (DESIGN.md §7). Being
-// plain double, it can misjudge poses within rounding distance of a constraint boundary; tests
-// sample inside VALID boxes, which the solver keeps away from boundaries by construction.
+// the boxes the solver calls VALID can catch a bug in the certified path (DESIGN.md §7).
+// Carved boxes touch constraint boundaries, so their corners and some samples lie within
+// rounding of one; the checks therefore decide every constraint exactly (verify/exact_check.hpp):
+// plain doubles with an error bound for the ordinary pose, rationals and a 256-bit MPFR
+// enclosure only for the close calls, which an `exact_stats` counts. A nonzero `tolerance` still
+// selects the old plain-double judgement that forgives small violations (for comparison only).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -20,6 +24,7 @@
 #include <Eigen/Dense>
 
 #include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/verify/exact_check.hpp"
 
 namespace certipose::verify {
 
@@ -81,6 +86,7 @@ inline double point_triangle_distance(const Eigen::Vector3d& p, const std::array
     return best;
 }
 
+/// The plain-double test, kept to compare with (the checks use `segment_meets_triangle`).
 /// Möller–Trumbore: does the open segment (p, q) cross triangle t? Hits within `end_slack` of
 /// either end (in segment parameter) are ignored: the segment may touch the facet's own edges at
 /// q, where neighbours of the facet meet it (DESIGN.md §3.6). With `edge_slack` > 0, hits within
@@ -126,6 +132,14 @@ inline bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3
     return tt > end_slack && tt < 1.0 - end_slack;
 }
 
+/// Constraint 6 for one triangle, decided exactly: does the open segment (p, q) meet the closed
+/// triangle t (touching an edge or a vertex counts, p and q themselves do not)? p and q are taken
+/// as the exact points they are; counts close calls in `stats`.
+inline bool segment_meets_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                   const std::array<Eigen::Vector3d, 3>& t, exact_stats* stats = nullptr) {
+    return exact::segment_meets(p, exact::literal_end(q), t, stats);
+}
+
 /// Scene triangles other than the facet of interest, for ray casting.
 struct occluders {
     std::vector<std::array<Eigen::Vector3d, 3>> triangles;
@@ -151,9 +165,22 @@ struct occluders {
         }
         return o;
     }
-    bool blocks(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double edge_slack = 0.0) const {
+    /// Does a triangle meet the open segment (p, q)? With `edge_slack` 0, decided exactly
+    /// (segment_meets_triangle); with `edge_slack` > 0, the old plain-double test that forgives
+    /// grazes of that size (segment_hits_triangle).
+    bool blocks(const Eigen::Vector3d& p, const Eigen::Vector3d& q, double edge_slack = 0.0,
+                exact_stats* stats = nullptr) const {
+        if (edge_slack > 0.0) {
+            for (const auto& t : triangles)
+                if (segment_hits_triangle(p, q, t, 1e-9, edge_slack)) return true;
+            return false;
+        }
+        return blocks(p, exact::literal_end(q), stats);
+    }
+    /// The same for a sight line to a point of the facet snapped by exact::snapped.
+    bool blocks(const Eigen::Vector3d& p, const exact::sight_end& end, exact_stats* stats = nullptr) const {
         for (const auto& t : triangles)
-            if (segment_hits_triangle(p, q, t, 1e-9, edge_slack)) return true;
+            if (exact::segment_meets(p, end, t, stats)) return true;
         return false;
     }
 };
@@ -167,22 +194,38 @@ inline std::vector<Eigen::Vector3d> facet_targets(const facet& f, std::span<cons
     return pts;
 }
 
-/// A relative tolerance for poses on the boundary of a box: 0 judges every constraint exactly as
-/// written (in doubles); `tolerance` = t > 0 forgives violations smaller than t relative to the
-/// quantities compared (distances, the view-angle sine, pixel coordinates, barycentric
-/// coordinates of a grazed blocker). Box corners need it: VALID boxes carved off by the inner
-/// contraction or an occlusion cut touch a constraint boundary to within rounding, where plain
-/// double evaluation may land either side; a real violation is far larger than 1e-9.
+/// How the checks judge a pose near a constraint boundary. 0 (the default): exactly, as the
+/// constraint is written — no violation forgiven, none invented (exact_check.hpp). t > 0: the
+/// old plain-double judgement, forgiving violations smaller than t relative to the quantities
+/// compared (distances, the view-angle sine, pixel coordinates, barycentric coordinates of a
+/// grazed blocker). It hides real violations of a few ulps; kept only to compare with.
 struct tolerance {
     double relative = 0.0;
 };
 
-/// Checks the position constraints (1–4 and, if `scene` is given, 6) of DESIGN.md §3 at p.
-inline violations check_position(const Eigen::Vector3d& p, const facet& f, double d_min, double d_max,
-                                 double min_view_angle, const occluders* scene = nullptr,
-                                 std::span<const Eigen::Vector3d> targets = {}, tolerance tol = {}) {
+namespace detail {
+
+/// The sight-line ends of `targets`, snapped to the facet v (exact::snapped). Callers check many
+/// poses against one facet and one target list, so the last list is kept per thread.
+inline const std::vector<exact::sight_end>& sight_ends(const std::array<Eigen::Vector3d, 3>& v,
+                                                       std::span<const Eigen::Vector3d> targets) {
+    thread_local std::array<Eigen::Vector3d, 3> facet_of;
+    thread_local std::vector<exact::sight_end> ends;
+    bool same = ends.size() == targets.size() && facet_of == v;
+    for (std::size_t i = 0; same && i < targets.size(); ++i) same = ends[i].q == targets[i];
+    if (!same) {
+        facet_of = v;
+        ends.clear();
+        for (const auto& q : targets) ends.push_back(exact::snapped(v, q));
+    }
+    return ends;
+}
+
+/// The old plain-double judgement with a relative tolerance t > 0 (see `tolerance`).
+inline violations forgiving_position_check(const Eigen::Vector3d& p, const facet& f, double d_min, double d_max,
+                                           double min_view_angle, const occluders* scene,
+                                           std::span<const Eigen::Vector3d> targets, double t) {
     violations r;
-    const double t = tol.relative;
     const double dist = point_triangle_distance(p, f.v);
     r.on_facet = !(dist > 0.0);
     double far = 0;
@@ -200,8 +243,36 @@ inline violations check_position(const Eigen::Vector3d& p, const facet& f, doubl
     return r;
 }
 
-/// Constraint 5 of DESIGN.md §3: every vertex in front of the camera and inside the image.
-inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolerance tol = {}) {
+}  // namespace detail
+
+/// Checks the position constraints (1–4 and, if `scene` is given, 6) of DESIGN.md §3 at p, each
+/// decided exactly (with `tol` > 0: the forgiving plain-double judgement). Sight lines go to the
+/// points of the facet that `targets` stand for (exact::snapped). Close calls are counted in
+/// `stats`.
+inline violations check_position(const Eigen::Vector3d& p, const facet& f, double d_min, double d_max,
+                                 double min_view_angle, const occluders* scene = nullptr,
+                                 std::span<const Eigen::Vector3d> targets = {}, tolerance tol = {},
+                                 exact_stats* stats = nullptr) {
+    if (tol.relative > 0.0)
+        return detail::forgiving_position_check(p, f, d_min, d_max, min_view_angle, scene, targets, tol.relative);
+    violations r;
+    const exact::position_decision d = exact::decide_position(p, f.v, d_min, d_max, min_view_angle, stats);
+    r.on_facet = d.on_facet, r.focus = d.focus, r.backface = d.backface, r.view_angle = d.view_angle;
+    if (scene && !targets.empty())
+        for (const auto& end : detail::sight_ends(f.v, targets))
+            if (scene->blocks(p, end, stats)) {
+                r.occluded = true;
+                break;
+            }
+    return r;
+}
+
+/// Constraint 5 of DESIGN.md §3: every vertex in front of the camera and inside the image,
+/// decided exactly (with `tol` > 0: the forgiving plain-double judgement).
+inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolerance tol = {},
+                   exact_stats* stats = nullptr) {
+    if (!(tol.relative > 0.0))
+        return exact::decide_fov(x.position, x.phi, x.gamma, x.beta, f.v, cam.K, cam.width_px, cam.height_px, stats);
     const Eigen::Matrix3d R = zxz(x.phi, x.gamma, x.beta);
     const double mu = tol.relative * cam.width_px, mv = tol.relative * cam.height_px;
     for (const auto& v : f.v) {
@@ -217,9 +288,9 @@ inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolera
 /// Every constraint of DESIGN.md §3 at one pose.
 inline violations check_pose(const pose& x, const facet& f, const camera_view& cam, double min_view_angle,
                              const occluders* scene = nullptr, std::span<const Eigen::Vector3d> targets = {},
-                             tolerance tol = {}) {
-    violations r = check_position(x.position, f, cam.d_min, cam.d_max, min_view_angle, scene, targets, tol);
-    r.fov = !fov_ok(x, f, cam, tol);
+                             tolerance tol = {}, exact_stats* stats = nullptr) {
+    violations r = check_position(x.position, f, cam.d_min, cam.d_max, min_view_angle, scene, targets, tol, stats);
+    r.fov = !fov_ok(x, f, cam, tol, stats);
     return r;
 }
 
