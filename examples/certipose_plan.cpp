@@ -33,8 +33,10 @@
 #include <CLI/CLI.hpp>
 
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -130,7 +132,11 @@ double since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)}); }
+/// The same double, bit for bit (so both +inf, for an unbounded d_max): a run whose camera differs
+/// in the last bit of d_min certified its boxes against other constraints, and the difference is
+/// exactly where its box edges sit. summary.json round-trips every double (shortest digits written,
+/// read back in round-to-nearest), so a run of this camera always compares equal.
+bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 /// The run in DIR must be of this mesh, camera and task, with occlusion checked: otherwise its
 /// boxes certify something else.
@@ -143,19 +149,19 @@ void check_run(const certipose::part_summary& run, const certipose::part_summary
     const auto text = [](double v) { return certipose::detail::format_double(v); };
     if (run.mesh.faces != here.mesh.faces)
         mismatch("mesh.faces", std::to_string(run.mesh.faces), std::to_string(here.mesh.faces));
-    if (!close(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
+    if (!same(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
     if (!run.mesh.digest.empty() && run.mesh.digest != here.mesh.digest)
         mismatch("mesh.digest", run.mesh.digest, here.mesh.digest);
     const auto& a = run.camera;
     const auto& b = here.camera;
-    if (!close(a.width_px, b.width_px) || !close(a.height_px, b.height_px))
+    if (!same(a.width_px, b.width_px) || !same(a.height_px, b.height_px))
         mismatch("camera size", text(a.width_px) + "x" + text(a.height_px), text(b.width_px) + "x" + text(b.height_px));
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-            if (!close(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
-    if (!close(a.d_min, b.d_min) || !(close(a.d_max, b.d_max) || (std::isinf(a.d_max) && std::isinf(b.d_max))))
+            if (!same(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
+    if (!same(a.d_min, b.d_min) || !same(a.d_max, b.d_max))
         mismatch("camera distance range", text(a.d_min) + ".." + text(a.d_max), text(b.d_min) + ".." + text(b.d_max));
-    if (!close(run.task.min_view_angle, here.task.min_view_angle))
+    if (!same(run.task.min_view_angle, here.task.min_view_angle))
         mismatch("task.min_view_angle", text(run.task.min_view_angle), text(here.task.min_view_angle));
     if (!run.settings.occlusion_checked)
         throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "

@@ -3,8 +3,9 @@
 # program.plan_and_verify).
 #   plan.sh PART PLAN VERIFY MESH CAMERA WORK_DIR
 # The plan is written with its PLY, refuses to overwrite an input or to plan from a run of
-# another scale, rejects contradictory options with exit 2, has a one-shot mode honouring
-# --cameras, and certipose-verify certifies the plan's boxes and the tolerance of an exact pose.
+# another scale, mesh or camera (d_min one bit off), rejects contradictory options with exit 2,
+# has a one-shot mode honouring --cameras, and certipose-verify certifies the plan's boxes and
+# the tolerance of an exact pose.
 set -uo pipefail
 part=$1 plan=$2 verify=$3 mesh=$4 camera=$5 work=$6
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
@@ -53,6 +54,18 @@ grep -q '0123456789abcdef' other/summary.json || fail "summary.json has no mesh 
 "$plan" --mesh "$mesh" --camera "$camera" --part-results other --out z.json 2>err
 [ $? -eq 1 ] || fail "planning from a run of another mesh: expected exit 1"
 grep -q 'mesh.digest' err || fail "the mesh mismatch is not named: $(cat err)"
+
+# A run whose d_min differs in the last bit: its boxes were carved for another focus range, so
+# nothing of it is trusted (the run above, of this very camera, compared equal bit for bit).
+mkdir -p nudged && cp run/boxes.jsonl nudged/
+python3 -c 'import json, math, sys
+s = json.load(open(sys.argv[1]))
+s["camera"]["d_min"] = math.nextafter(s["camera"]["d_min"], math.inf)
+json.dump(s, open(sys.argv[2], "w"))' run/summary.json nudged/summary.json || fail "could not edit summary.json"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results nudged --out n.json 2>err
+[ $? -eq 1 ] || fail "planning from a run whose d_min differs in the last bit: expected exit 1"
+grep -q 'camera distance range' err || fail "the d_min mismatch is not named: $(cat err)"
+[ -e n.json ] && fail "a failed run wrote its output"
 
 # One shot, at most 2 cameras.
 "$plan" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 895-905 --cameras 2 \
