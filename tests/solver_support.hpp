@@ -1,6 +1,6 @@
 // Shared by the solver test files: the sampling check of VALID boxes against every constraint
-// of DESIGN.md §3 with the independent evaluator and ray caster (verify/point_check.hpp), which
-// decides close calls exactly. The solver tests are split over three translation units because
+// with the independent evaluator and ray caster (verify/point_check.hpp), which decides close
+// calls exactly. The solver tests are split over three translation units because
 // each pipeline instantiation costs a lot to optimise at -O2 and two cores build them in parallel.
 #pragma once
 #include <doctest/doctest.h>

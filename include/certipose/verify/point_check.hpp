@@ -1,9 +1,10 @@
-// certipose/verify/point_check.hpp — an independent, plain-double check of one camera pose
-// against every constraint of DESIGN.md §3, with ray casting for occlusion.
+// certipose/verify/point_check.hpp — an independent check of one camera pose against every
+// constraint of the inspection (1 not on the facet, 2 focus, 3 backface, 4 viewing angle, 5 field
+// of view, 6 occlusion, by ray casting).
 //
 // This is deliberately NOT the certified code path: no intervals, no contractors, no CGAL — a
-// second implementation written straight from DESIGN.md, so that sampling random poses inside
-// the boxes the solver calls VALID can catch a bug in the certified path (DESIGN.md §7).
+// second implementation written straight from the constraints, so that sampling random poses
+// inside the boxes the solver calls VALID can catch a bug in the certified path (docs/testing.md).
 // Carved boxes touch constraint boundaries, so their corners and some samples lie within
 // rounding of one; the checks therefore decide every constraint exactly (verify/exact_check.hpp):
 // plain doubles with an error bound for the ordinary pose, rationals and a 256-bit MPFR
@@ -41,7 +42,7 @@ struct camera_view {
     double d_min, d_max;
 };
 
-/// Which constraints of DESIGN.md §3 a pose violates (all false: the pose is valid).
+/// Which constraints a pose violates (all false: the pose is valid).
 struct violations {
     bool on_facet = false, focus = false, backface = false, view_angle = false, fov = false, occluded = false;
     bool any() const { return on_facet || focus || backface || view_angle || fov || occluded; }
@@ -89,7 +90,7 @@ inline double point_triangle_distance(const Eigen::Vector3d& p, const std::array
 /// The plain-double test, kept to compare with (the checks use `segment_meets_triangle`).
 /// Möller–Trumbore: does the open segment (p, q) cross triangle t? Hits within `end_slack` of
 /// either end (in segment parameter) are ignored: the segment may touch the facet's own edges at
-/// q, where neighbours of the facet meet it (DESIGN.md §3.6). With `edge_slack` > 0, hits within
+/// q, where neighbours of the facet meet it. With `edge_slack` > 0, hits within
 /// that distance (in barycentric coordinates) of t's boundary are ignored too: a pose whose sight
 /// line grazes a blocker's edge to within rounding is not called blocked (see `tolerance`).
 inline bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q,
@@ -245,7 +246,7 @@ inline violations forgiving_position_check(const Eigen::Vector3d& p, const facet
 
 }  // namespace detail
 
-/// Checks the position constraints (1–4 and, if `scene` is given, 6) of DESIGN.md §3 at p, each
+/// Checks the position constraints (1–4 and, if `scene` is given, 6) at p, each
 /// decided exactly (with `tol` > 0: the forgiving plain-double judgement). Sight lines go to the
 /// points of the facet that `targets` stand for (exact::snapped). Close calls are counted in
 /// `stats`.
@@ -267,7 +268,7 @@ inline violations check_position(const Eigen::Vector3d& p, const facet& f, doubl
     return r;
 }
 
-/// Constraint 5 of DESIGN.md §3: every vertex in front of the camera and inside the image,
+/// Constraint 5 (field of view): every vertex in front of the camera and inside the image,
 /// decided exactly (with `tol` > 0: the forgiving plain-double judgement).
 inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolerance tol = {},
                    exact_stats* stats = nullptr) {
@@ -285,7 +286,7 @@ inline bool fov_ok(const pose& x, const facet& f, const camera_view& cam, tolera
     return true;
 }
 
-/// Every constraint of DESIGN.md §3 at one pose.
+/// Every constraint at one pose.
 inline violations check_pose(const pose& x, const facet& f, const camera_view& cam, double min_view_angle,
                              const occluders* scene = nullptr, std::span<const Eigen::Vector3d> targets = {},
                              tolerance tol = {}, exact_stats* stats = nullptr) {
