@@ -204,6 +204,7 @@ TEST_CASE("soundness matrix: refinement that completes both passes") {
 }
 
 TEST_CASE("soundness matrix: refinement stopped by its time budget and by the box budget") {
+    std::size_t by_time = 0, by_boxes = 0, in_second_pass = 0;
     run_matrix("refinement, stopped", [](const matrix_case& c, const case_solver& solver, const loaded_case& lc) {
         // Budgets cut from a completed run's: a time that ends it early in either pass, and box
         // counts that end it in the first pass and in the second.
@@ -223,7 +224,18 @@ TEST_CASE("soundness matrix: refinement stopped by its time budget and by the bo
             out.push_back(o);
         }
         return out;
-    }, 401);
+    }, 401, [&](const solve_result<I>& r) {
+        by_time += r.stats.refinement_stopped;
+        by_boxes += r.stats.reason == termination::box_budget;
+        in_second_pass += (r.stats.refinement_stopped || r.stats.reason == termination::box_budget) &&
+                          r.stats.refinement_passes == 2;
+    });
+    // The budgets do stop the runs, in both passes (36 runs: 18 with each kind of budget).
+    MESSAGE(by_time << " runs stopped by the refinement's time, " << by_boxes << " by the box budget, "
+                    << in_second_pass << " of them in the second pass");
+    CHECK(by_time >= 9);
+    CHECK(by_boxes >= 9);
+    CHECK(in_second_pass >= 3);
 }
 
 TEST_CASE("soundness matrix: growth, and refinement with growth") {
