@@ -154,22 +154,30 @@ solve_options refined_and_grown(const matrix_case& c) {
     return o;
 }
 
-/// Runs `mode` (options from the case) on every case of the matrix and checks every VALID box;
-/// `after` sees each result too.
-template <class Options, class After = decltype([](const solve_result<I>&) {})>
-void run_matrix(const char* mode, Options&& options_of, std::uint32_t seed, After&& after = {}) {
-    mode_total total;
+/// Calls f(case, loaded case, solver) for every case of the matrix.
+template <class F>
+void for_each_case(F&& f) {
     for (const auto& c : reference_cases) {
         const loaded_case lc = load(c);
         CAPTURE(lc.label);
         CAPTURE(c.position_eps);
         const case_solver solver(lc.mesh, lc.camera, lc.task);
+        f(c, lc, solver);
+    }
+}
+
+/// Runs `mode` (options from the case) on every case of the matrix and checks every VALID box;
+/// `after` sees each result too.
+template <class Options, class After = decltype([](const solve_result<I>&) {})>
+void run_matrix(const char* mode, Options&& options_of, std::uint32_t seed, After&& after = {}) {
+    mode_total total;
+    for_each_case([&](const matrix_case& c, const loaded_case& lc, const case_solver& solver) {
         for (const solve_options& o : options_of(c, solver, lc)) {
             const auto r = solver.solve(lc.facet, o);
             after(r);
             report(total, mode, lc, o, r, check_all(lc, solver, r, seed++));
         }
-    }
+    });
     summary(mode, total);
 }
 
@@ -251,10 +259,7 @@ TEST_CASE("soundness matrix: growth, and refinement with growth") {
 
 TEST_CASE("soundness matrix: largest_box_around") {
     mode_total total;
-    for (const auto& c : reference_cases) {
-        const loaded_case lc = load(c);
-        CAPTURE(lc.label);
-        const case_solver solver(lc.mesh, lc.camera, lc.task);
+    for_each_case([&](const matrix_case& c, const loaded_case& lc, const case_solver& solver) {
         // Around the centres of VALID boxes of a refined, grown run (certified poses, so a box
         // comes back) and around independently sampled valid positions aimed at the centroid.
         const solve_options o = refined_and_grown(c);
@@ -286,7 +291,7 @@ TEST_CASE("soundness matrix: largest_box_around") {
         CHECK(from_valid == poses.size() - truth.valid.size());  // a certified pose always gets a box
         const auto rep = check_valid_boxes(found, lc.mesh, lc.camera, solver.range(), lc.task.min_view_angle, 40, 701);
         report(total, "largest_box_around", lc, o, found, rep);
-    }
+    });
     summary("largest_box_around", total);
 }
 
@@ -295,12 +300,8 @@ TEST_CASE("soundness matrix: a plan's tolerance boxes and every facet they certi
     // tolerance around their centres; each certifies its own facet (a sub-box of a VALID box) and
     // whatever inspect_boxes certifies besides. Candidates from refined, grown runs.
     mode_total total;
-    for (const auto& c : reference_cases) {
-        const loaded_case lc = load(c);
-        CAPTURE(lc.label);
-        const case_solver solver(lc.mesh, lc.camera, lc.task);
-        const solve_options o = refined_and_grown(c);
-        const auto r = solver.solve(lc.facet, o);
+    for_each_case([&](const matrix_case& c, const loaded_case& lc, const case_solver& solver) {
+        const auto r = solver.solve(lc.facet, refined_and_grown(c));
         std::vector<pose_box<I>> boxes;
         for (const auto& b : r.boxes)
             if (b.cls == box_class::valid) boxes.push_back(around_centre(b.box, {0.005, 0.005, 0.005, 0.02, 0.02, 0.02}));
@@ -331,7 +332,7 @@ TEST_CASE("soundness matrix: a plan's tolerance boxes and every facet they certi
         ++total.runs;
         total.boxes += claims, total.samples += rep.samples, total.violations += rep.violations, total.exact += rep.exact;
         CHECK(rep.violations == 0);
-    }
+    });
     summary("plan tolerance boxes (claims)", total);
 }
 

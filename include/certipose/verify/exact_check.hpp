@@ -232,46 +232,37 @@ auto atom(Expr expr, relation r, exact_stats* stats) {
     };
 }
 
-template <class... Node>
-std::optional<bool> all_of(bool exact_allowed, const Node&... node) {
-    bool falsified = false, open = false;
+/// all_of (`decisive` false) and any_of (`decisive` true): one member answering `decisive` gives
+/// the answer; only when every member answers the other way is the answer the other one.
+template <bool decisive, class... Node>
+std::optional<bool> combine(bool exact_allowed, const Node&... node) {
+    bool decided = false, open = false;
     const auto first = [&](const auto& n) {
-        if (falsified) return;
+        if (decided) return;
         const auto r = n(false);
         if (!r) open = true;
-        else if (!*r) falsified = true;
+        else if (*r == decisive) decided = true;
     };
     (first(node), ...);
-    if (falsified) return false;
-    if (!open) return true;
+    if (decided) return decisive;
+    if (!open) return !decisive;
     if (!exact_allowed) return std::nullopt;
-    bool ok = true;
+    bool found = false;
     const auto settle = [&](const auto& n) {
-        if (ok && !n(false)) ok = *n(true);
+        if (!found && !n(false)) found = *n(true) == decisive;
     };
     (settle(node), ...);
-    return ok;
+    return found ? decisive : !decisive;
+}
+
+template <class... Node>
+std::optional<bool> all_of(bool exact_allowed, const Node&... node) {
+    return combine<false>(exact_allowed, node...);
 }
 
 template <class... Node>
 std::optional<bool> any_of(bool exact_allowed, const Node&... node) {
-    bool verified = false, open = false;
-    const auto first = [&](const auto& n) {
-        if (verified) return;
-        const auto r = n(false);
-        if (!r) open = true;
-        else if (*r) verified = true;
-    };
-    (first(node), ...);
-    if (verified) return true;
-    if (!open) return false;
-    if (!exact_allowed) return std::nullopt;
-    bool found = false;
-    const auto settle = [&](const auto& n) {
-        if (!found && !n(false)) found = *n(true);
-    };
-    (settle(node), ...);
-    return found;
+    return combine<true>(exact_allowed, node...);
 }
 
 // ---- constraints 1–4 ---------------------------------------------------------------------------
