@@ -23,7 +23,7 @@ const certipose::sample_part& part() {
 
 certipose::solve_options paper_paving() {
     certipose::solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
-    o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
+    o.paving = certipose::paper_paving{};
     return o;
 }
 certipose::solve_options grown() {

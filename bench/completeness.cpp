@@ -91,12 +91,12 @@ figures measure(const certipose::solve_result<I>& r, const truth& t) {
 
 certipose::solve_options mode_options(const std::string& mode) {
     certipose::solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
-    if (mode == "paper") o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
-    else if (mode == "inner") o.occlusion_cuts = o.leaf_corner_boxes = false;
-    else if (mode == "cuts") o.leaf_corner_boxes = false;
-    else if (mode == "depth1") o.corner_depth = 1;  // one corner box per leaf (before corner_depth)
-    else if (mode == "rest2") o.corner_rest_min_pieces = 2;  // rest boxes' corner boxes down to 2 pieces (before 3)
-    else if (mode == "leaf") o.occlusion_cuts = false;
+    if (mode == "paper") o.paving = certipose::paper_paving{};
+    else if (mode == "inner") o.paving = certipose::carving{.occlusion_cuts = false, .corner_boxes = false};
+    else if (mode == "cuts") o.paving = certipose::carving{.corner_boxes = false};
+    else if (mode == "depth1") o.paving = certipose::carving{.corner_depth = 1};  // one corner box per leaf (before corner_depth)
+    else if (mode == "rest2") o.paving = certipose::carving{.rest_min_pieces = 2};  // rest boxes' corner boxes down to 2 pieces (before 3)
+    else if (mode == "leaf") o.paving = certipose::carving{.occlusion_cuts = false};
     else if (mode == "refine") {
         o.time_limit = std::chrono::seconds(1);
         o.refine = certipose::refinement{};

@@ -30,14 +30,12 @@ certipose::position_problem problem() {
 }
 
 // The paper's paving (no inner contraction, occlusion cuts or corner boxes) and the default.
-const certipose::position_stage_options paper{.inner_contraction = false, .occlusion_cuts = false,
-                                              .leaf_corner_boxes = false};
-const certipose::position_stage_options inner_only{.inner_contraction = true, .occlusion_cuts = false,
-                                                   .leaf_corner_boxes = false};
-const certipose::position_stage_options carving{};
+const certipose::paving_choice paper = certipose::paper_paving{};
+const certipose::paving_choice inner_only = certipose::carving{.occlusion_cuts = false, .corner_boxes = false};
+const certipose::paving_choice carving = certipose::carving{};
 
 template <class Occlusion>
-void run(benchmark::State& state, const certipose::position_stage_options& stage,
+void run(benchmark::State& state, const certipose::paving_choice& stage,
          std::optional<std::chrono::milliseconds> refine = {}) {
     const auto pb = problem();
     const Occlusion occlusion(part().mesh);
@@ -66,7 +64,9 @@ void BM_position_paving_sample_part_inner_contraction_only(benchmark::State& sta
 void BM_position_paving_sample_part_refined_200ms(benchmark::State& state) {
     run<certipose::aabb_occlusion>(state, carving, std::chrono::milliseconds(200));
 }
-void BM_position_paving_sample_part_no_occlusion(benchmark::State& state) { run<certipose::no_occlusion>(state, carving); }
+void BM_position_paving_sample_part_no_occlusion(benchmark::State& state) {
+    run<certipose::no_occlusion>(state, carving);
+}
 
 }  // namespace
 

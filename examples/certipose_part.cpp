@@ -163,9 +163,8 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.facet.orientation_eps = args.orientation_eps;
     if (args.max_boxes_per_facet) opt.facet.max_boxes = *args.max_boxes_per_facet;
     if (args.facet_time_limit) opt.facet.time_limit = seconds(*args.facet_time_limit);
-    opt.facet.inner_contraction = opt.facet.occlusion_cuts = opt.facet.leaf_corner_boxes = !args.paper_paving;
-    if (args.corner_depth) opt.facet.corner_depth = *args.corner_depth;
-    if (args.corner_rest) opt.facet.corner_rest_min_pieces = *args.corner_rest;
+    opt.facet.paving = paving_for(args.paper_paving, !std::is_same_v<Occlusion, certipose::boolean_occlusion>,
+                                  args.corner_depth, args.corner_rest);
     if (args.refine) opt.facet.refine = certipose::refinement{.time_limit = seconds(*args.refine)};
     if (args.grow) opt.facet.grow = certipose::growth_options{};
     if (args.time_limit) opt.time_limit = seconds(*args.time_limit);

@@ -22,6 +22,7 @@
 #include <csignal>
 #include <cstdio>
 #include <stop_token>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -29,6 +30,7 @@
 
 #include <CLI/CLI.hpp>
 #include <certipose/error.hpp>
+#include <certipose/solver/paving.hpp>
 
 #include <iostream>
 
@@ -132,14 +134,27 @@ inline std::size_t parse_count(const std::string& option, const std::string& tex
     return v;
 }
 
-/// --corner-depth: solve_options::corner_depth, 1 to 8.
+/// The paving choice of --paper-paving, --corner-depth and --corner-rest. Occlusion cuts need
+/// a policy that names the shadows of possible blockers (ShadowingOcclusionPolicy): `aabb` and
+/// `none` do, `boolean` (the paper's test) does not, so with it carving runs without them.
+inline certipose::paving_choice paving_for(bool paper, bool shadowing_occlusion, std::optional<std::size_t> corner_depth,
+                                           std::optional<double> corner_rest) {
+    if (paper) return certipose::paper_paving{};
+    certipose::carving c;
+    c.occlusion_cuts = shadowing_occlusion;
+    if (corner_depth) c.corner_depth = *corner_depth;
+    if (corner_rest) c.rest_min_pieces = *corner_rest;
+    return c;
+}
+
+/// --corner-depth: carving::corner_depth, 1 to 8.
 inline std::size_t parse_corner_depth(const std::string& text) {
     const std::size_t v = parse_count("--corner-depth", text, 1);
     if (v > 8) throw usage_error("--corner-depth: expected an integer from 1 to 8, got " + text);
     return v;
 }
 
-/// --corner-rest: solve_options::corner_rest_min_pieces, a finite number >= 0.
+/// --corner-rest: carving::rest_min_pieces, a finite number >= 0.
 inline double parse_corner_rest(const std::string& text) {
     const double v = parse_number("--corner-rest", text, "a number >= 0");
     if (!(v >= 0.0) || !std::isfinite(v)) throw usage_error("--corner-rest: expected a finite number >= 0, got " + text);

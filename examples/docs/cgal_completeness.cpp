@@ -17,7 +17,7 @@ int main() {
 
     // The paper's paving: partly valid boxes are bisected down to ε_p, then given up.
     certipose::solve_options paper{.position_eps = 0.1, .orientation_eps = 0.38};
-    paper.inner_contraction = paper.occlusion_cuts = paper.leaf_corner_boxes = false;
+    paper.paving = certipose::paper_paving{};
     // The default: what certainly holds is carved off partly valid boxes instead.
     const certipose::solve_options carving{.position_eps = 0.1, .orientation_eps = 0.38};
     // As complete as 1 s allows: refine below ε_p, largest undecided box first.

@@ -1,6 +1,7 @@
 // docs/part.md: every facet of a part (here every 25th of the sample part) with part_solver,
 // streamed to a sink in facet order.
 #include <certipose/cgal.hpp>
+#include <certipose/part.hpp>
 
 #include <cstdio>
 

@@ -12,15 +12,20 @@
 // constraint set's contractor `c` and returns a Contractor built on it.
 struct twice {
     template <class C>
-    static auto wrap(C c) { return certipose::compose(c, c); }
+    auto wrap(C c) const { return certipose::compose(c, c); }
 };
 static_assert(certipose::ContractionPolicy<twice, certipose::boost_interval>);
 
-// The defaults, except one policy; changes chain from the inside out.
-using acid_solver = certipose::pose_solver<certipose::with_contraction<certipose::contraction::acid>>;
+// The defaults, except one policy; changes chain from the inside out, or come in any order
+// through certipose::policies<...>.
+using acid_solver = certipose::pose_solver<certipose::with_contraction<certipose::contraction::acid_shaving>>;
+using same_as_my_solver = certipose::pose_solver<
+    certipose::policies<certipose::with_bisector<certipose::round_robin>, certipose::with_contraction<twice>>>;
 using exact_solver = certipose::pose_solver<
     certipose::with_occlusion<certipose::boolean_occlusion, certipose::with_interval<certipose::cgal_interval>>>;
 using my_solver = certipose::pose_solver<certipose::with_contraction<twice, certipose::with_bisector<certipose::round_robin>>>;
+static_assert(std::is_same_v<my_solver::contraction_type, same_as_my_solver::contraction_type> &&
+              std::is_same_v<my_solver::bisector_type, same_as_my_solver::bisector_type>);
 static_assert(std::is_same_v<exact_solver::interval_type, certipose::cgal_interval>);
 static_assert(std::is_same_v<exact_solver::camera_type, certipose::thin_lens_camera>);  // the rest: defaults
 
@@ -92,5 +97,14 @@ int main() {
     const any_camera_solver lens(part.mesh, certipose::calibrated_camera(camera, "thin_lens"), {.min_view_angle = 0.35});
     std::printf("pinhole capped at %.3f m: %zu VALID; thin lens as calibrated_camera: %zu VALID\n", capped.range().max,
                 capped.solve(part.facet_of_interest).stats.valid, lens.solve(part.facet_of_interest).stats.valid);
-    return result.stats.valid > 0 && cut.stats.valid > 0 ? 0 : 1;
+
+    // A contraction policy with its options, and the contractor the position stage runs with it.
+    using acid_pipeline = certipose::pose_solver<certipose::with_contraction<certipose::contraction::acid_shaving>>;
+    const acid_pipeline shaving(part.mesh, camera, {.min_view_angle = 0.35}, {.contraction = {.options = {.s3b = 20}}});
+    auto contractor = shaving.position_contractor(part.facet_of_interest);  // what the pipeline runs
+    auto box = contractor.constraint_set().initial_box();
+    contractor.contract(box);
+    std::printf("ACID (s3b = %d) narrows the search box to %.3f m^3\n", shaving.contraction().options.s3b,
+                certipose::volume(box));
+    return result.stats.valid > 0 && cut.stats.valid > 0 && !certipose::is_empty(box) ? 0 : 1;
 }

@@ -7,7 +7,7 @@
 // them reduced to the values the solver reads (camera/calibrated_camera.hpp). No CGAL.
 #pragma once
 
-#include <certipose/camera/calibrated_camera.hpp>
-#include <certipose/camera/camera_model.hpp>
-#include <certipose/camera/pinhole_camera.hpp>
-#include <certipose/camera/thin_lens_camera.hpp>
+#include "certipose/camera/calibrated_camera.hpp"  // IWYU pragma: export
+#include "certipose/camera/camera_model.hpp"  // IWYU pragma: export
+#include "certipose/camera/pinhole_camera.hpp"  // IWYU pragma: export
+#include "certipose/camera/thin_lens_camera.hpp"  // IWYU pragma: export

@@ -14,13 +14,13 @@
 // that library (detail/precompiled.hpp).
 #pragma once
 
-#include "certipose/certipose.hpp"
+#include "certipose/certipose.hpp"  // IWYU pragma: export
 
-#include "certipose/interval/cgal_eigen.hpp"
-#include "certipose/interval/cgal_interval.hpp"
-#include "certipose/io/read_mesh.hpp"
-#include "certipose/occlusion/cgal_aabb_occlusion.hpp"
-#include "certipose/occlusion/cgal_boolean_occlusion.hpp"
-#include "certipose/verify/point_check.hpp"
+#include "certipose/interval/cgal_eigen.hpp"  // IWYU pragma: export
+#include "certipose/interval/cgal_interval.hpp"  // IWYU pragma: export
+#include "certipose/io/read_mesh.hpp"  // IWYU pragma: export
+#include "certipose/occlusion/cgal_aabb_occlusion.hpp"  // IWYU pragma: export
+#include "certipose/occlusion/cgal_boolean_occlusion.hpp"  // IWYU pragma: export
+#include "certipose/verify/point_check.hpp"  // IWYU pragma: export
 
-#include "certipose/detail/precompiled.hpp"
+#include "certipose/detail/precompiled.hpp"  // IWYU pragma: export

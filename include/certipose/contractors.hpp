@@ -7,12 +7,12 @@
 // (interval/boost_interval.hpp, interval/cgal_interval.hpp). See docs/contractors.md.
 #pragma once
 
-#include "certipose/contractor/acid.hpp"
-#include "certipose/contractor/compose.hpp"
-#include "certipose/contractor/concept.hpp"
-#include "certipose/contractor/eval_test.hpp"
-#include "certipose/contractor/fixpoint.hpp"
-#include "certipose/contractor/hc4.hpp"
-#include "certipose/contractor/identity.hpp"
-#include "certipose/contractor/not_in.hpp"
-#include "certipose/expr.hpp"
+#include "certipose/contractor/acid.hpp"  // IWYU pragma: export
+#include "certipose/contractor/compose.hpp"  // IWYU pragma: export
+#include "certipose/contractor/concept.hpp"  // IWYU pragma: export
+#include "certipose/contractor/eval_test.hpp"  // IWYU pragma: export
+#include "certipose/contractor/fixpoint.hpp"  // IWYU pragma: export
+#include "certipose/contractor/hc4.hpp"  // IWYU pragma: export
+#include "certipose/contractor/identity.hpp"  // IWYU pragma: export
+#include "certipose/contractor/not_in.hpp"  // IWYU pragma: export
+#include "certipose/expr.hpp"  // IWYU pragma: export

@@ -3,7 +3,7 @@
 // forward evaluation (expr/).
 #pragma once
 
-#include "certipose/expr/constraint.hpp"
-#include "certipose/expr/evaluate.hpp"
-#include "certipose/expr/expression.hpp"
-#include "certipose/expr/vector.hpp"
+#include "certipose/expr/constraint.hpp"  // IWYU pragma: export
+#include "certipose/expr/evaluate.hpp"  // IWYU pragma: export
+#include "certipose/expr/expression.hpp"  // IWYU pragma: export
+#include "certipose/expr/vector.hpp"  // IWYU pragma: export

@@ -195,12 +195,12 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         {"bad orientation threshold", [&] { certipose::solve_options{.orientation_eps = std::nan("")}.validate(); }},
         {"bad corner depth", [&] {
              certipose::solve_options o;
-             o.corner_depth = 0;
+             o.paving = certipose::carving{.corner_depth = 0};
              o.validate();
          }},
         {"bad corner rest", [&] {
              certipose::solve_options o;
-             o.corner_rest_min_pieces = -1;
+             o.paving = certipose::carving{.rest_min_pieces = -1};
              o.validate();
          }},
         {"output directory missing", [&] { certipose::write_file_atomically(dir / "no" / "result.json", "{}"); }},

@@ -4,7 +4,7 @@
 #include <certipose/cgal.hpp>
 
 struct my_policies : certipose::default_policies {
-    using bisector = certipose::contraction::hc4;
+    using bisector = certipose::contraction::set_only;
 };
 
 int main() {

@@ -301,7 +301,7 @@ TEST_CASE("error messages name tiny and non-finite values exactly") {
     };
     names(message([] { certipose::solve_options{.position_eps = -1e-9}.validate(); }), "-1e-09");
     names(message([] { certipose::solve_options{.orientation_eps = -2.5e-12}.validate(); }), "-2.5e-12");
-    names(message([] { certipose::solve_options{.corner_rest_min_pieces = -0.5}.validate(); }), "-0.5");
+    names(message([] { certipose::solve_options{.paving = certipose::carving{.rest_min_pieces = -0.5}}.validate(); }), "-0.5");
     names(message([] { certipose::inspection_task{.min_view_angle = -1e-300}.validate(); }), "-1e-300");
     names(message([] { (void)largest_first(0.1, 1.0000000000000002); }), "1.0000000000000002");
     names(message([] { (void)round_robin(-1e-20); }), "-1e-20");

@@ -45,7 +45,7 @@ using case_solver = pose_solver<with_camera<calibrated_camera>>;
 
 solve_options paper_options() {
     solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
-    o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
+    o.paving = paper_paving{};
     return o;
 }
 
@@ -127,8 +127,8 @@ TEST_CASE("deeper corner staircases stay sound and certify more than one corner 
         const auto truth = verify::sample_valid_positions(lc.mesh, lc.facet, solver.range().min, solver.range().max,
                                                           lc.task.min_view_angle, 1000, 37);
         solve_options one{.position_eps = 0.1, .orientation_eps = 0.38}, three = one;
-        one.corner_depth = 1;
-        three.corner_depth = 3;
+        one.paving = carving{.corner_depth = 1};
+        three.paving = carving{.corner_depth = 3};
         const auto r1 = solver.solve(lc.facet, one);
         const auto r3 = solver.solve(lc.facet, three);
         REQUIRE(r3.stats.reason == termination::completed);

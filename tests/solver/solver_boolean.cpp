@@ -14,7 +14,7 @@ TEST_CASE("boolean and aabb occlusion certify the same position boxes on a small
     // about where a PARTIAL box is blocked): without them both runs ask the same question of
     // each box, so they must give the same answers.
     solve_options opt{.position_eps = 0.1, .orientation_eps = 0.38};
-    opt.occlusion_cuts = false;
+    opt.paving = carving{.occlusion_cuts = false};
     const auto fast = default_solver<aabb_occlusion>(small.mesh, camera, task).solve(small.facet_of_interest, opt);
     const auto exact = default_solver<boolean_occlusion>(small.mesh, camera, task).solve(small.facet_of_interest, opt);
     REQUIRE(exact.stats.valid > 0);

@@ -88,8 +88,9 @@ std::string command(const loaded_case& lc, const solve_options& o) {
           << lc.camera_path;
     }
     s << " --position-eps " << num(o.position_eps) << " --orientation-eps " << num(o.orientation_eps);
-    if (!o.inner_contraction && !o.occlusion_cuts && !o.leaf_corner_boxes) s << " --paper-paving";
-    if (o.corner_depth != solve_options{}.corner_depth) s << " --corner-depth " << o.corner_depth;
+    if (std::holds_alternative<paper_paving>(o.paving)) s << " --paper-paving";
+    if (const carving* c = carving_of(o.paving); c && c->corner_depth != carving{}.corner_depth)
+        s << " --corner-depth " << c->corner_depth;
     if (o.max_boxes != solve_options{}.max_boxes) s << " --max-boxes " << o.max_boxes;
     if (o.time_limit) s << " --time-limit " << num(std::chrono::duration<double>(*o.time_limit).count());
     if (o.refine) {
@@ -186,7 +187,7 @@ void run_matrix(const char* mode, Options&& options_of, std::uint32_t seed, Afte
 TEST_CASE("soundness matrix: the paper's paving") {
     run_matrix("paper paving", [](const matrix_case& c, const auto&, const auto&) {
         solve_options o = base(c);
-        o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false;
+        o.paving = paper_paving{};
         return std::vector<solve_options>{o};
     }, 101);
 }
@@ -380,8 +381,8 @@ TEST_CASE("random stress: facets, thresholds and modes of the four reference mes
         const int mode = static_cast<int>(rng() % 8);
         const auto refine_for = [&](int ms) { o.refine = refinement{.time_limit = std::chrono::milliseconds(ms)}; };
         switch (mode) {
-            case 0: o.inner_contraction = o.occlusion_cuts = o.leaf_corner_boxes = false; break;
-            case 1: o.corner_depth = 1 + rng() % 3; break;
+            case 0: o.paving = paper_paving{}; break;
+            case 1: o.paving = carving{.corner_depth = 1 + rng() % 3}; break;
             case 2: refine_for(50 + static_cast<int>(rng() % 400)); break;
             case 3: refine_for(3000); break;
             case 4:

@@ -10,8 +10,8 @@
 // pixel) for any model. The built-in models are `thin_lens_camera` and `pinhole_camera`.
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/error.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
 
 #include <Eigen/Dense>
 

@@ -8,9 +8,9 @@
 // Every impossible parameter throws certipose::invalid_argument naming the field.
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/camera/camera_model.hpp>
-#include <certipose/error.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/error.hpp"
 
 #include <Eigen/Dense>
 

@@ -11,9 +11,9 @@
 // certipose::invalid_argument naming the field.
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/camera/camera_model.hpp>
-#include <certipose/error.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/error.hpp"
 
 #include <Eigen/Dense>
 

@@ -12,16 +12,14 @@
 #pragma once
 
 #include <concepts>
-#include <cstddef>
-#include <cstdint>
 #include <optional>
-#include <string_view>
 
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/contractor/concept.hpp"
 #include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/pose/pose_box.hpp"
-#include "certipose/solver/task.hpp"
+#include "certipose/inspection_task.hpp"
+#include "certipose/outcome.hpp"  // boundary_reason, verdict
 
 namespace certipose {
 
@@ -31,37 +29,6 @@ struct position_problem {
     distance_range range;    ///< usable distances [d_min, d_max] (camera + resolution cap)
     inspection_task task;    ///< θ_v and the resolution requirement
 };
-
-/// Why a BOUNDARY box was left undecided: a constraint (DESIGN.md §3) that could be proven
-/// neither true nor false over the whole box — the first one the set checks that way (the
-/// paper's set: backface, viewing angle, d_max, facet contact, d_min) — or the budget that ended
-/// the run first.
-enum class boundary_reason : std::uint8_t {
-    facet_contact,  ///< constraint 1: the box may touch the facet
-    distance,       ///< constraint 2: d_min ≤ ‖p − q‖ ≤ d_max undecided (focus, resolution)
-    backface,       ///< constraint 3: the box may reach the facet's plane
-    view_angle,     ///< constraint 4: the viewing angle to the normal is undecided
-    constraint,     ///< a user constraint set (one that does not say which of its constraints)
-    occlusion,      ///< constraint 6: some sight lines blocked, some free (occlusion PARTIAL)
-    field_of_view,  ///< constraint 5: no orientation box certified, even at ε_p
-    budget          ///< not decided: a box budget, deadline or cancellation ended the run
-};
-inline constexpr std::size_t boundary_reason_count = 8;
-
-/// "facet_contact", "distance", ... (JSON, messages).
-constexpr std::string_view to_string(boundary_reason r) noexcept {
-    switch (r) {
-        case boundary_reason::facet_contact: return "facet_contact";
-        case boundary_reason::distance: return "distance";
-        case boundary_reason::backface: return "backface";
-        case boundary_reason::view_angle: return "view_angle";
-        case boundary_reason::constraint: return "constraint";
-        case boundary_reason::occlusion: return "occlusion";
-        case boundary_reason::field_of_view: return "field_of_view";
-        case boundary_reason::budget: return "budget";
-    }
-    return "?";
-}
 
 /// The parameters a set takes besides the problem: `typename S::parameters`, or `no_parameters`.
 struct no_parameters {

@@ -29,6 +29,7 @@
 
 #include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/detail/forward_param.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
@@ -115,7 +116,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        if constexpr (requires { c_.template set_param<Id>(lo, hi); }) c_.template set_param<Id>(lo, hi);
+        contractor_detail::forward_set_param<Id, contractor_detail::param_targets::those_having_one>(c_, lo, hi);
     }
 
 private:

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/detail/forward_param.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/pose/interval_box.hpp"
@@ -56,14 +57,10 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        std::apply([&](auto&... c) { (set_part_param<Id>(c, lo, hi), ...); }, cs_);
+        contractor_detail::forward_set_param<Id, contractor_detail::param_targets::those_having_one>(cs_, lo, hi);
     }
 
 private:
-    template <std::size_t Id, class C>
-    static void set_part_param(C& c, double lo, double hi) {
-        if constexpr (requires { c.template set_param<Id>(lo, hi); }) c.template set_param<Id>(lo, hi);
-    }
     std::tuple<Cs...> cs_;
 };
 
@@ -105,15 +102,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        std::apply(
-            [&](auto&... c) {
-                (
-                    [&] {
-                        if constexpr (requires { c.template set_param<Id>(lo, hi); }) c.template set_param<Id>(lo, hi);
-                    }(),
-                    ...);
-            },
-            cs_);
+        contractor_detail::forward_set_param<Id, contractor_detail::param_targets::those_having_one>(cs_, lo, hi);
     }
 
 private:

@@ -11,14 +11,9 @@
 
 #include <concepts>
 
-namespace certipose {
+#include "certipose/outcome.hpp"  // verdict
 
-/// Three-valued answer of a box test over *every* point of the box.
-enum class verdict {
-    satisfied,  ///< every point of the box satisfies the constraints (certified)
-    violated,   ///< no point of the box satisfies them (certified)
-    undecided   ///< neither could be proven
-};
+namespace certipose {
 
 /// `c.contract(box)` narrows `box` soundly; an empty box afterwards means "no solution".
 template <class C, class Box>

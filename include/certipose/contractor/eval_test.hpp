@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/detail/forward_param.hpp"
 #include "certipose/expr/constraint.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/interval/concept.hpp"
@@ -71,7 +72,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        std::apply([&](auto&... c) { (c.template set_param<Id>(lo, hi), ...); }, cs_);
+        contractor_detail::forward_set_param<Id>(cs_, lo, hi);
     }
 
 private:

@@ -41,6 +41,7 @@
 
 #include "certipose/detail/format.hpp"
 #include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/detail/forward_param.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/constraint.hpp"
@@ -105,7 +106,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        std::apply([&](auto&... c) { (c.template set_param<Id>(lo, hi), ...); }, cs_);
+        contractor_detail::forward_set_param<Id>(cs_, lo, hi);
     }
 
     /// ACID's variable ordering heuristic (smearsumrel, Araya et al.): for each variable, the

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "certipose/contractor/concept.hpp"
+#include "certipose/contractor/detail/forward_param.hpp"
 #include "certipose/contractor/detail/narrowing.hpp"
 #include "certipose/contractor/eval_test.hpp"
 #include "certipose/expr/constraint.hpp"
@@ -58,7 +59,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        std::apply([&](auto&... c) { (c.template set_param<Id>(lo, hi), ...); }, cs_);
+        contractor_detail::forward_set_param<Id>(cs_, lo, hi);
     }
 
 private:
@@ -111,7 +112,7 @@ public:
 
     template <std::size_t Id>
     void set_param(double lo, double hi) {
-        neg_.template set_param<Id>(lo, hi);
+        contractor_detail::forward_set_param<Id>(neg_, lo, hi);
     }
 
 private:

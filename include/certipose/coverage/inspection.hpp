@@ -41,6 +41,7 @@
 #include "certipose/solver/detail/box_certifier.hpp"
 #include "certipose/solver/detail/carving.hpp"
 #include "certipose/solver/pose_solver.hpp"
+#include "certipose/solver/task.hpp"  // growth_options
 
 namespace certipose {
 

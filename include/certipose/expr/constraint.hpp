@@ -18,12 +18,12 @@
 #include <utility>
 
 #include "certipose/detail/format.hpp"
-#include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
 #include "certipose/expr/detail/rounding_scope.hpp"
 #include "certipose/expr/expression.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/operations.hpp"
+#include "certipose/outcome.hpp"  // verdict
 
 namespace certipose::expr {
 

@@ -88,19 +88,46 @@ std::array<I, N> zero_gradient() {
 
 // ---- leaves -------------------------------------------------------------------------------
 
-/// The K-th component of the box.
-template <std::size_t K>
-struct var : node_tag {
-    static_assert(K < 64, "certipose: expressions address at most 64 box variables");
-    static constexpr std::size_t index = K;
+namespace detail {
+
+/// What the leaves (var, constant, param) share: no slot of their own (a leaf is read by
+/// `value`, so `fwd` computes nothing), never repeated, defined everywhere, and the static facts
+/// a node reports. The defaults below are those of a leaf without variables: a zero gradient and
+/// no parameter to set. Each leaf adds `value` and `bwd`, and declares its own `grad` or
+/// `set_param` where it differs (hiding these).
+template <std::uint64_t VarMask, std::size_t VarBound, bool IsConstant>
+struct leaf : node_tag {
     static constexpr std::size_t slots = 0;
-    static constexpr std::uint64_t var_mask = std::uint64_t{1} << K;
-    static constexpr std::size_t var_bound = K + 1;
+    static constexpr std::uint64_t var_mask = VarMask;
+    static constexpr std::size_t var_bound = VarBound;
     static constexpr bool repeated = false;
-    static constexpr bool is_constant = false;
+    static constexpr bool is_constant = IsConstant;
 
     template <std::size_t O, class Box, class V>
     CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
+    template <std::size_t O, class Box, class V>
+    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
+        return true;
+    }
+    template <std::size_t O, class Box, class V>
+    auto grad(const Box&, const V&) const {
+        return zero_gradient<interval_of<V>, dimension_of<Box>>();
+    }
+    template <std::size_t Id>
+    void set_param(double, double) noexcept {}
+};
+
+/// A leaf without variables whose value is known (up to an interval) before evaluation.
+using value_leaf = leaf<0, 0, true>;
+
+}  // namespace detail
+
+/// The K-th component of the box.
+template <std::size_t K>
+struct var : detail::leaf<(K < 64 ? std::uint64_t{1} << K : 0), K + 1, false> {
+    static_assert(K < 64, "certipose: expressions address at most 64 box variables");
+    static constexpr std::size_t index = K;
+
     template <std::size_t O, class Box, class V>
     CERTIPOSE_DETAIL_INLINE const auto& value(const Box& box, const V&) const noexcept {
         return box[K];
@@ -110,36 +137,22 @@ struct var : node_tag {
         return detail::narrow(box[K], t);
     }
     template <std::size_t O, class Box, class V>
-    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
-        return true;
-    }
-    template <std::size_t O, class Box, class V>
     auto grad(const Box&, const V&) const {
         using I = detail::interval_of<V>;
         auto g = detail::zero_gradient<I, detail::dimension_of<Box>>();
         g[K] = I(1.0);
         return g;
     }
-    template <std::size_t Id>
-    void set_param(double, double) noexcept {}
 };
 
 /// A double constant. NaN is rejected (it would silently make every constraint infeasible).
-struct constant : node_tag {
-    static constexpr std::size_t slots = 0;
-    static constexpr std::uint64_t var_mask = 0;
-    static constexpr std::size_t var_bound = 0;
-    static constexpr bool repeated = false;
-    static constexpr bool is_constant = true;
-
+struct constant : detail::value_leaf {
     double c;
 
     explicit constant(double v) : c(v) {
         if (std::isnan(v)) throw invalid_argument("constant", "expression constant is NaN");
     }
 
-    template <std::size_t O, class Box, class V>
-    CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
     template <std::size_t O, class Box, class V>
     double value(const Box&, const V&) const noexcept {
         return c;
@@ -148,29 +161,14 @@ struct constant : node_tag {
     CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
         return contains(t, c);
     }
-    template <std::size_t O, class Box, class V>
-    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
-        return true;
-    }
-    template <std::size_t O, class Box, class V>
-    auto grad(const Box&, const V&) const {
-        return detail::zero_gradient<detail::interval_of<V>, detail::dimension_of<Box>>();
-    }
-    template <std::size_t Id>
-    void set_param(double, double) noexcept {}
 };
 
 /// An interval parameter: a value known only to lie in [lo, hi] (e.g. a facet vertex
 /// coordinate, or a position-box component when solving for orientation). Held by value in
 /// the tree; `set_param<Id>(tree_or_contractor, lo, hi)` updates every parameter with this Id.
 template <std::size_t Id = 0>
-struct param : node_tag {
+struct param : detail::value_leaf {
     static constexpr std::size_t id = Id;
-    static constexpr std::size_t slots = 0;
-    static constexpr std::uint64_t var_mask = 0;
-    static constexpr std::size_t var_bound = 0;
-    static constexpr bool repeated = false;
-    static constexpr bool is_constant = true;
 
     double lo = 0.0, hi = 0.0;
 
@@ -198,22 +196,12 @@ struct param : node_tag {
     }
 
     template <std::size_t O, class Box, class V>
-    CERTIPOSE_DETAIL_INLINE void fwd(const Box&, V&) const noexcept {}
-    template <std::size_t O, class Box, class V>
     detail::interval_of<V> value(const Box&, const V&) const {
         return detail::interval_of<V>(lo, hi);
     }
     template <std::size_t O, class Box, class V>
     CERTIPOSE_DETAIL_INLINE bool bwd(const detail::interval_of<V>& t, Box&, V&) const {
         return !is_empty(intersect(t, detail::interval_of<V>(lo, hi)));
-    }
-    template <std::size_t O, class Box, class V>
-    CERTIPOSE_DETAIL_INLINE bool defined(const Box&, const V&) const noexcept {
-        return true;
-    }
-    template <std::size_t O, class Box, class V>
-    auto grad(const Box&, const V&) const {
-        return detail::zero_gradient<detail::interval_of<V>, detail::dimension_of<Box>>();
     }
     template <std::size_t J>
     void set_param(double l, double h) {

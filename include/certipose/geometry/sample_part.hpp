@@ -18,9 +18,9 @@
 // [−0.1, 0.1]² × [0.25, 0.3] m sits above it.
 #pragma once
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/detail/fenv.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/detail/fenv.hpp"
 
 #include <Eigen/Core>
 

@@ -13,9 +13,9 @@
 // Boost.Multiprecision integers.
 #pragma once
 
-#include <certipose/detail/config.hpp>
-#include <certipose/detail/format.hpp>
-#include <certipose/error.hpp>
+#include "certipose/detail/config.hpp"
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -18,15 +18,15 @@
 // mode upward came back as a different double (measured: 1/3 and 0.123456789 did not survive).
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/camera.hpp>
-#include <certipose/camera/calibrated_camera.hpp>
-#include <certipose/error.hpp>
-#include <certipose/interval/detail/fenv.hpp>
-#include <certipose/io/result_document.hpp>
-#include <certipose/io/write_file.hpp>
-#include <certipose/solver/result.hpp>
-#include <certipose/solver/task.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/camera.hpp"
+#include "certipose/camera/calibrated_camera.hpp"
+#include "certipose/error.hpp"
+#include "certipose/interval/detail/fenv.hpp"
+#include "certipose/io/result_document.hpp"
+#include "certipose/io/write_file.hpp"
+#include "certipose/solver/result.hpp"
+#include "certipose/solver/task.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -45,6 +45,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -577,37 +578,27 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
 
     const solve_stats& s = d.stats;
     ordered_json stats;
-    stats["valid"] = s.valid;
-    stats["boundary"] = s.boundary;
-    stats["seconds"] = finite(s.seconds, "stats.seconds");
-    // Extra fields (allowed by the contract): per-stage counts and times, why the run ended.
-    stats["position_valid"] = s.position_valid;
-    stats["position_boundary"] = s.position_boundary;
-    stats["contractions"] = s.contractions;
-    stats["bisections"] = s.bisections;
-    stats["occlusion_tests"] = s.occlusion_tests;
-    stats["shadow_walks"] = s.shadow_walks;
-    stats["inner_pieces"] = s.inner_pieces;
-    stats["occlusion_pieces"] = s.occlusion_pieces;
-    stats["corner_boxes"] = s.corner_boxes;
-    stats["position_merges"] = s.position_merges;
-    stats["valid_volume"] = finite(s.valid_volume, "stats.valid_volume");
-    stats["boundary_volume"] = finite(s.boundary_volume, "stats.boundary_volume");
-    stats["refinement_stopped"] = s.refinement_stopped;
-    stats["merges"] = s.merges;
-    stats["grown"] = s.grown;
-    stats["seconds_growth"] = finite(s.seconds_growth, "stats.seconds_growth");
-    stats["orientation_certifications"] = s.orientation_certifications;
-    stats["orientation_groups"] = s.orientation_groups;
-    stats["orientation_borrowed"] = s.orientation_borrowed;
-    stats["seconds_position"] = finite(s.seconds_position, "stats.seconds_position");
-    stats["seconds_orientation"] = finite(s.seconds_orientation, "stats.seconds_orientation");
-    stats["termination"] = to_string(s.reason);
-    ordered_json reasons;
-    for (std::size_t r = 0; r < boundary_reason_count; ++r)
-        reasons[std::string(to_string(static_cast<boundary_reason>(r)))] = s.boundary_reasons[r];
-    stats["boundary_reasons"] = std::move(reasons);
-    stats["occlusion_checked"] = s.occlusion_checked;
+    // The fields of solve_stats_fields (solver/result.hpp), in its order. Beyond valid, boundary
+    // and seconds they are extra fields (allowed by the contract): per-stage counts and times,
+    // why the run ended.
+    for_each_stats_field([&](const auto& field) {
+        const std::string key(field.name);
+        const auto& v = s.*field.member;
+        using T = std::remove_cvref_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, double>) {
+            stats[key] = finite(v, child("stats", key));
+        } else if constexpr (std::is_same_v<T, termination>) {
+            stats[key] = to_string(v);
+        } else if constexpr (std::is_same_v<T, decltype(solve_stats::boundary_reasons)>) {
+            ordered_json reasons;
+            for (std::size_t r = 0; r < boundary_reason_count; ++r)
+                reasons[std::string(to_string(static_cast<boundary_reason>(r)))] = v[r];
+            stats[key] = std::move(reasons);
+        } else {
+            static_assert(std::is_same_v<T, std::size_t> || std::is_same_v<T, bool>, "a stats field of a new type");
+            stats[key] = v;
+        }
+    });
 
     ordered_json j;
     j["facet"] = std::move(facet);
@@ -741,52 +732,39 @@ inline result_document result_from_json(const nlohmann::json& j) {
 
     const json& stats = require_object(require(j, "", "stats", "an object"), "stats");
     solve_stats& s = d.stats;
-    s.valid = as_count(require(stats, "stats", "valid", "an integer"), "stats.valid");
-    s.boundary = as_count(require(stats, "stats", "boundary", "an integer"), "stats.boundary");
-    s.seconds = required_number(stats, "stats", "seconds");
-    const auto count = [&](std::string_view key, std::size_t& out) {
-        if (const json* v = find(stats, key)) out = as_count(*v, child("stats", key));
-    };
-    count("position_valid", s.position_valid);
-    count("position_boundary", s.position_boundary);
-    count("contractions", s.contractions);
-    count("bisections", s.bisections);
-    count("occlusion_tests", s.occlusion_tests);
-    count("shadow_walks", s.shadow_walks);
-    count("inner_pieces", s.inner_pieces);
-    count("occlusion_pieces", s.occlusion_pieces);
-    count("corner_boxes", s.corner_boxes);
-    count("position_merges", s.position_merges);
-    count("orientation_certifications", s.orientation_certifications);
-    count("orientation_groups", s.orientation_groups);
-    count("orientation_borrowed", s.orientation_borrowed);
-    s.valid_volume = optional_number(stats, "stats", "valid_volume").value_or(0.0);
-    s.boundary_volume = optional_number(stats, "stats", "boundary_volume").value_or(0.0);
-    flag(stats, "stats", "refinement_stopped", s.refinement_stopped);
-    count("merges", s.merges);
-    count("grown", s.grown);
-    s.seconds_growth = optional_number(stats, "stats", "seconds_growth").value_or(0.0);
-    s.seconds_position = optional_number(stats, "stats", "seconds_position").value_or(0.0);
-    s.seconds_orientation = optional_number(stats, "stats", "seconds_orientation").value_or(0.0);
-    if (const json* t = find(stats, "termination")) {
-        const std::string name = as_string(*t, "stats.termination", "a string");
-        const auto reason = termination_from_string(name);
-        if (!reason)
-            fail("stats.termination", "unknown termination \"" + name +
-                                          "\" (expected completed, box_budget, deadline or cancelled)");
-        s.reason = *reason;
-    }
-    if (const json* reasons = find(stats, "boundary_reasons")) {
-        require_object(*reasons, "stats.boundary_reasons");
-        for (std::size_t r = 0; r < boundary_reason_count; ++r) {
-            const std::string_view key = to_string(static_cast<boundary_reason>(r));
-            if (const json* v = find(*reasons, key)) s.boundary_reasons[r] = as_count(*v, child("stats.boundary_reasons", key));
+    // The fields of solve_stats_fields (solver/result.hpp); an optional one that is absent reads
+    // as its default (0, "completed", true), and an optional number that is null as 0.
+    for_each_stats_field([&](const auto& field) {
+        const std::string path = child("stats", field.name);
+        auto& out = s.*field.member;
+        using T = std::remove_cvref_t<decltype(out)>;
+        if constexpr (std::is_same_v<T, double>) {
+            out = field.required ? required_number(stats, "stats", field.name)
+                                 : optional_number(stats, "stats", field.name).value_or(0.0);
+        } else {
+            const json* v = field.required ? &require(stats, "stats", field.name, "an integer") : find(stats, field.name);
+            if (!v) return;
+            if constexpr (std::is_same_v<T, std::size_t>) {
+                out = as_count(*v, path);
+            } else if constexpr (std::is_same_v<T, bool>) {
+                if (!v->is_boolean()) fail(path, "expected true or false, got " + describe(*v));
+                out = v->get<bool>();
+            } else if constexpr (std::is_same_v<T, termination>) {
+                const std::string name = as_string(*v, path, "a string");
+                const auto reason = termination_from_string(name);
+                if (!reason)
+                    fail(path, "unknown termination \"" + name + "\" (expected completed, box_budget, deadline or cancelled)");
+                out = *reason;
+            } else {
+                static_assert(std::is_same_v<T, decltype(solve_stats::boundary_reasons)>, "a stats field of a new type");
+                require_object(*v, path);
+                for (std::size_t r = 0; r < boundary_reason_count; ++r) {
+                    const std::string_view key = to_string(static_cast<boundary_reason>(r));
+                    if (const json* c = find(*v, key)) out[r] = as_count(*c, child(path, key));
+                }
+            }
         }
-    }
-    if (const json* c = find(stats, "occlusion_checked")) {
-        if (!c->is_boolean()) fail("stats.occlusion_checked", "expected true or false, got " + describe(*c));
-        s.occlusion_checked = c->get<bool>();
-    }
+    });
     return d;
 }
 

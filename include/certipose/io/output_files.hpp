@@ -15,8 +15,8 @@
 // paths otherwise; so are two outputs that are the same file.
 #pragma once
 
-#include <certipose/error.hpp>
-#include <certipose/io/write_file.hpp>
+#include "certipose/error.hpp"
+#include "certipose/io/write_file.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -14,9 +14,9 @@
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
 #pragma once
 
-#include <certipose/io/json.hpp>
-#include <certipose/io/result_document.hpp>
-#include <certipose/part/part_solver.hpp>
+#include "certipose/io/json.hpp"
+#include "certipose/io/result_document.hpp"
+#include "certipose/part/part_solver.hpp"
 
 #include <nlohmann/json.hpp>
 

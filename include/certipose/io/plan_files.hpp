@@ -14,9 +14,9 @@
 // "orientation": [[φl,φu],...]}; a PLAN.json is accepted too (its "cameras" are the boxes).
 #pragma once
 
-#include <certipose/io/json.hpp>
-#include <certipose/io/part_files.hpp>
-#include <certipose/io/ply.hpp>
+#include "certipose/io/json.hpp"
+#include "certipose/io/part_files.hpp"
+#include "certipose/io/ply.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -15,14 +15,14 @@
 // mode the caller holds). Files are written atomically.
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/interval/detail/fenv.hpp>
-#include <certipose/io/result_document.hpp>
-#include <certipose/io/write_file.hpp>
-#include <certipose/solver/result.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/detail/fenv.hpp"
+#include "certipose/io/result_document.hpp"
+#include "certipose/io/write_file.hpp"
+#include "certipose/solver/result.hpp"
 
 #include <Eigen/Geometry>
 

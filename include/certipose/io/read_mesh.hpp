@@ -12,9 +12,9 @@
 // certipose::cgal. The writer, write_mesh_off, is in certipose/io/write_mesh.hpp (no CGAL).
 #pragma once
 
-#include <certipose/detail/config.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/io/write_mesh.hpp>
+#include "certipose/detail/config.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/io/write_mesh.hpp"
 
 #include <filesystem>
 #include <optional>
@@ -49,9 +49,9 @@ triangle_mesh read_mesh(const std::filesystem::path& path, const read_options& o
 
 #include "certipose/interval/detail/fenv.hpp"
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/io/write_mesh.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/io/write_mesh.hpp"
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>

@@ -10,11 +10,11 @@
 // resolution cap (capped_distance_range), so a checker needs no camera model of its own.
 #pragma once
 
-#include <certipose/camera/camera_model.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/solver/result.hpp>
-#include <certipose/solver/task.hpp>
+#include "certipose/camera/camera_model.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/solver/result.hpp"
+#include "certipose/solver/task.hpp"
 
 #include <array>
 #include <cstddef>
@@ -57,9 +57,10 @@ struct result_document {
     };
     struct settings_record {
         double position_eps = 0, orientation_eps = 0;
-        bool inner_contraction = true, occlusion_cuts = true, leaf_corner_boxes = true;  ///< solve_options of the same names
-        std::size_t corner_depth = 1;  ///< solve_options::corner_depth (1 in files that do not give it)
-        double corner_rest_min_pieces = 2;  ///< solve_options::corner_rest_min_pieces (2 in files that do not give it)
+        /// carving's steps (false for the paper's paving): inner_contraction, occlusion_cuts, corner_boxes
+        bool inner_contraction = true, occlusion_cuts = true, leaf_corner_boxes = true;
+        std::size_t corner_depth = 1;  ///< carving::corner_depth (1 in files that do not give it)
+        double corner_rest_min_pieces = 2;  ///< carving::rest_min_pieces (2 in files that do not give it)
         std::optional<double> refine_min_width{};               ///< set when the run refined below ε_p
         bool grow = false;                                      ///< the VALID boxes were widened
         friend bool operator==(const settings_record&, const settings_record&) = default;
@@ -111,8 +112,11 @@ result_document make_result_document(const solve_result<I>& result, const triang
     d.camera.d_min = range.min;
     d.camera.d_max = range.max;
     d.task = {task.min_view_angle, task.max_metres_per_pixel};
-    d.settings = {options.position_eps, options.orientation_eps, options.inner_contraction, options.occlusion_cuts,
-                  options.leaf_corner_boxes, options.corner_depth, options.corner_rest_min_pieces,
+    // The paper's paving records carving's steps off (and its tuning at the defaults).
+    const carving* carved = carving_of(options.paving);
+    const carving c = carved ? *carved : carving{.inner_contraction = false, .occlusion_cuts = false, .corner_boxes = false};
+    d.settings = {options.position_eps, options.orientation_eps, c.inner_contraction, c.occlusion_cuts,
+                  c.corner_boxes, c.corner_depth, c.rest_min_pieces,
                   options.refine ? std::optional<double>(options.refine->width(options.position_eps)) : std::nullopt,
                   options.grow.has_value()};
     d.boxes.reserve(result.boxes.size());

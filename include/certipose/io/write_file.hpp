@@ -11,7 +11,7 @@
 // and std::filesystem::rename give the same "all or nothing" without the durability flush.
 #pragma once
 
-#include <certipose/error.hpp>
+#include "certipose/error.hpp"
 
 #include <atomic>
 #include <cerrno>

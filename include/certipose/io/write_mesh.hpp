@@ -8,10 +8,10 @@
 // certipose/io/read_mesh.hpp (CGAL). Failure throws certipose::io_error naming the path.
 #pragma once
 
-#include <certipose/detail/format.hpp>
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/io/write_file.hpp>
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/io/write_file.hpp"
 
 #include <filesystem>
 #include <string>

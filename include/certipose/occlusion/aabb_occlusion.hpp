@@ -7,12 +7,12 @@
 // translation unit that only declares the policy does not parse CGAL.
 #pragma once
 
-#include <certipose/detail/config.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/occlusion/concept.hpp>
-#include <certipose/occlusion/detail/box_bounds.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/detail/config.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/detail/box_bounds.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <Eigen/Geometry>
 

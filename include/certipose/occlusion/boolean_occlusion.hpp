@@ -8,11 +8,11 @@
 // translation unit that includes <certipose/cgal.hpp>; certipose::precompiled compiles it once.
 #pragma once
 
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/occlusion/concept.hpp>
-#include <certipose/occlusion/detail/box_bounds.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/detail/box_bounds.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <Eigen/Geometry>
 

@@ -29,19 +29,19 @@
 // duration, so callers may hold an interval rounding guard.
 #pragma once
 
-#include <certipose/occlusion/aabb_occlusion.hpp>
+#include "certipose/occlusion/aabb_occlusion.hpp"
 
 #if CERTIPOSE_DETAIL_WITH_DEFINITIONS
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/interval/detail/fenv.hpp>
-#include <certipose/occlusion/concept.hpp>
-#include <certipose/occlusion/detail/box_bounds.hpp>
-#include <certipose/occlusion/detail/cgal_scene.hpp>
-#include <certipose/occlusion/detail/exact_geometry.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/detail/fenv.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/detail/box_bounds.hpp"
+#include "certipose/occlusion/detail/cgal_scene.hpp"
+#include "certipose/occlusion/detail/exact_geometry.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

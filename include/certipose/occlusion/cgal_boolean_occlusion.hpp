@@ -30,19 +30,19 @@
 // CGAL_HAS_THREADS, the default; each call works on its own copies).
 #pragma once
 
-#include <certipose/occlusion/boolean_occlusion.hpp>
+#include "certipose/occlusion/boolean_occlusion.hpp"
 
 #if CERTIPOSE_DETAIL_WITH_DEFINITIONS
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/interval/detail/fenv.hpp>
-#include <certipose/occlusion/concept.hpp>
-#include <certipose/occlusion/detail/box_bounds.hpp>
-#include <certipose/occlusion/detail/cgal_scene.hpp>
-#include <certipose/occlusion/detail/exact_geometry.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/interval/detail/fenv.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/detail/box_bounds.hpp"
+#include "certipose/occlusion/detail/cgal_scene.hpp"
+#include "certipose/occlusion/detail/exact_geometry.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>

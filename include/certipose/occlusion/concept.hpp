@@ -13,9 +13,9 @@
 // cannot sit inside the part). See docs/occlusion.md for the exact rules of each policy.
 #pragma once
 
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <Eigen/Core>
 

@@ -6,11 +6,11 @@
 // the same way with every policy. No CGAL, no state beyond the face count: thread-safe.
 #pragma once
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/occlusion/concept.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/occlusion/concept.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <cstddef>
 #include <span>
@@ -31,6 +31,19 @@ public:
     visibility classify(const position_box<I>& /*box*/, std::size_t facet) const {
         if (facet >= num_faces_) throw out_of_range("facet", facet, num_faces_);
         return visibility::visible;
+    }
+
+    /// No triangle may block (ShadowingOcclusionPolicy): the carving's occlusion cuts find every
+    /// box VISIBLE, as `classify` does, so they need not be turned off for this policy.
+    template <Interval I>
+    bool blockers(const position_box<I>& /*box*/, std::size_t facet, blocker_visitor /*visit*/) const {
+        if (facet >= num_faces_) throw out_of_range("facet", facet, num_faces_);
+        return true;
+    }
+    /// Never asked: `blockers` names no triangle.
+    occlusion_shadow shadow(std::size_t facet, std::size_t /*triangle*/) const {
+        if (facet >= num_faces_) throw out_of_range("facet", facet, num_faces_);
+        return {};
     }
 
 private:

@@ -43,12 +43,12 @@
 #include "certipose/detail/config.hpp"
 #include "certipose/detail/format.hpp"
 #include "certipose/camera/camera_model.hpp"
-#include "certipose/contractor/concept.hpp"
 #include "certipose/error.hpp"
 #include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/operations.hpp"
 #include "certipose/orientation/detail/spherical.hpp"
+#include "certipose/outcome.hpp"  // verdict
 #include "certipose/pose/pose_box.hpp"
 
 namespace certipose {
@@ -139,7 +139,7 @@ private:
 
 /// The frustum of `camera`, built once per thread for each camera in a row (compared by K and
 /// the image size). An orientation search asks for it on every position box, and building it
-/// (interval atan, sqrt and divisions) was 6 % of a plate_holes run. A K or size with a NaN never
+/// (interval atan, sqrt and divisions) each time would cost more than most searches. A K or size with a NaN never
 /// compares equal, so such a camera is rebuilt, and throws, every time.
 template <Interval I, CameraModel C>
 const fov_frustum<I>& frustum_of(const C& camera) {
@@ -299,9 +299,8 @@ struct fov_position {
 /// minimum over the box, (Rℓ_k)·(v − p0) − Σ_j |(Rℓ_k)_j|·r_j, is reached at a corner.
 /// Plain doubles: `true` is only ever used to give up on a box, never to certify one, so
 /// rounding could at worst cost a certification, and the margin (1e-9 of the terms' size,
-/// millions of times their rounding error) rules even that out. On plate_holes (facet 7) two
-/// thirds of the failed tiled proofs held such a corner pose, and they spent half of the
-/// run's certifications.
+/// millions of times their rounding error) rules even that out. Most failed tiled proofs hold
+/// such a corner pose (docs/orientation.md).
 ///
 /// `trig` holds sines and cosines computed for this box or the box it was split from (a tiled
 /// proof passes one along: detail/spherical.hpp, angle_trig); the overload without builds its own.

@@ -43,16 +43,17 @@ concept OrientationPolicy =
     };
 
 /// An orientation policy that can start from what its search found for a nearby position box:
-/// `p.orient(position, facet, camera, orientation_eps, hint)` reads and updates `hint` (a
-/// default-constructed one knows nothing). The solver keeps one hint per cell of ε_p, so the
-/// many small position boxes of a cell (carved pieces, corner boxes, refined leaves) search
-/// where their neighbours found a box. A hint may change how fast a box is found and which,
-/// never whether a returned box is certified.
+/// `p.orient(position, facet, camera, orientation_eps, hint)` reads and updates `hint`. The
+/// solver keeps one hint per cell of ε_p, made by `p.new_hint(position_eps)` (a new hint knows
+/// the size of the cell it serves and nothing else), so the many small position boxes of a cell
+/// (carved pieces, corner boxes, refined leaves) search where their neighbours found a box. A
+/// hint may change how fast a box is found and which, never whether a returned box is certified.
 template <class P, class I, class Camera>
 concept HintedOrientationPolicy =
-    OrientationPolicy<P, I, Camera> && std::default_initializable<typename P::hint> &&
+    OrientationPolicy<P, I, Camera> && std::copy_constructible<typename P::hint> &&
     requires(const P& p, const position_box<I>& position, const facet& f, const Camera& camera, double eps,
              typename P::hint& hint) {
+        { p.new_hint(eps) } -> std::same_as<typename P::hint>;
         { p.orient(position, f, camera, eps, hint) } -> std::same_as<orientation_result<I>>;
     };
 

@@ -17,23 +17,20 @@
 //  3. Allowable β (§6.4.2): the projection constraints ℓ_k·Rz(−β)·[b]_v ≥ 0 (vertex inside
 //     each image side, division-free), [b]_v = Rx(−[γ])·Rz(−[φ])·([v] − [p]), contracted from
 //     [−π, π] with HC4 (and ACID; the paper uses both). That hull is an outer approximation, in
-//     practice the whole circle: on ~85 000 candidate boxes of the sample part and four real
-//     meshes HC4 never narrowed [−π, π], and it cost 7 % of a whole-part run, so `orient` skips
-//     it unless `beta_hc4` / `beta_acid` ask for it (`paper_candidate` runs it by default). Past
-//     the paper, [β] is narrowed to the arc of rolls about β = 0 that keeps every vertex inside
-//     the image at the nominal aim.
+//     practice the whole circle, and certification decides the box anyway, so `orient` does
+//     not compute it (`paper_candidate` does by default). Past the paper, [β] is narrowed to
+//     the arc of rolls about β = 0 that keeps every vertex inside the image at the nominal aim.
 //  4. Certification: the paper's box is an approximation (it bounds the vertices over some
 //     position of the box, and offsets of ZXZ angles are not camera-frame offsets), so the 6D
 //     box is proven with `certify_fov`, by internal subdivision when one evaluation is not
 //     enough (the hull of a certified tiling is certified). The paper's box itself is not
 //     tried: its φ/γ edges are where a vertex reaches the image border from some position of
-//     the box, so a proof over the whole box fails (it never succeeded in ~180 000 attempts on
-//     ~130 000 position boxes of the sample part and three real meshes). The box shrinks toward the nominal aim
+//     the box, so a proof over the whole box fails (docs/orientation.md). The box shrinks toward the nominal aim
 //     (halving from one half, down to a box narrower than ε_o; β stays whole when the roll is
 //     free, since the roll-free cone test does not care), the largest certified scale is
 //     refined by bisection, and then β alone is widened back toward the paper's [β] as far as
 //     certification allows (φ and γ alone are not: at the refined scale they are what fails,
-//     and widening either never certified on the sample part's ~93 000 boxes). So each position box yields
+//     and widening either does not certify). So each position box yields
 //     one certified box, containing the nominal aim whenever the paper's box does, as wide as the
 //     search can certify — the installation tolerance in aim — or nothing, and the solver
 //     bisects [p]. With β whole, the smallest box the halving would try is certified first:
@@ -110,22 +107,12 @@ struct paper_orientation_options {
     int widen_steps = 1;
     /// Hard cap of `certify_fov` evaluations per position box.
     std::size_t max_certifications = 256;
-    /// Position boxes smaller than this (m³) keep the first scale that certifies: no
-    /// `refine_steps`, no β widening (0: every box is refined). Small boxes are the many corner
-    /// boxes and pieces along the boundary of what is valid, and most of them take their
-    /// neighbour's scale (a hint) anyway; their refinements were ~7 % of a plate_holes run
-    /// (facet 7, ε_p = 0.1 m: the default is ε_p³ / 10), and without them the median widths of
-    /// the reference cases moved by 0.008 rad at most (docs/orientation.md). In m³ because the
-    /// policy does not know ε_p.
-    double refine_min_volume = 1e-4;
-    /// Contract [β] with HC4 over the projection constraints (§6.4.2) before the roll arc
-    /// narrows it. Off by default: it never narrowed [−π, π] in our measurements (header
-    /// comment), and certification decides the box anyway.
-    bool beta_hc4 = false;
-    /// Follow HC4 by ACID when contracting [β] (the paper's "HC4 and ACID"; implies `beta_hc4`).
-    /// Off by default: it costs ~20× the HC4 pass (trigonometric shaving), and the hull it
-    /// sharpens is an outer approximation that certification decides anyway.
-    bool beta_acid = false;
+    /// Position boxes smaller than this fraction of their cell of ε_p (ε_p³, known from the
+    /// hint: HintedOrientationPolicy) keep the first scale that certifies: no `refine_steps`, no
+    /// β widening (0: every box is refined). Small boxes are the many corner boxes and pieces
+    /// along the boundary of what is valid, most of which take their neighbour's scale anyway.
+    /// A search without a hint refines every box.
+    double refine_min_fraction = 0.1;
 };
 
 /// How `paper_candidate` contracts [β] from [−π, π] before the roll arc narrows it.
@@ -303,8 +290,12 @@ std::optional<std::pair<double, double>> roll_arc(const position_box<I>& positio
 /// about β = 0 that fits at the nominal aim. Nothing when the facet cannot fit the field of
 /// view from every position of the box (the hyperplanes are farther apart than the FOV, or a
 /// vertex may lie beside or behind the nominal camera). Not certified.
+// Not inlined: its plain-double steps (the pan and tilt sums, the roll arc) run between changes
+// of the rounding mode, which g++ does not know orders them (GCC PR 34678), so an inlined copy
+// may round one of them otherwise and give a box one ulp apart. One copy per interval type
+// gives every camera model of a program the same candidate boxes.
 template <Interval I>
-std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f,
+[[gnu::noinline]] std::optional<orientation_box<I>> paper_candidate(const position_box<I>& position, const facet& f,
                                                   const fov_half_angles& fov, const fov_frustum<I>& frustum,
                                                   beta_contraction beta = beta_contraction::hc4) {
     using namespace detail::orientation;
@@ -400,10 +391,10 @@ public:
             throw invalid_argument("refine_steps", "paper_orientation: refine_steps and widen_steps must be >= 0");
         if (options_.max_certifications == 0)
             throw invalid_argument("max_certifications", "paper_orientation: max_certifications must be at least 1");
-        if (!(options_.refine_min_volume >= 0.0) || !std::isfinite(options_.refine_min_volume))
-            throw invalid_argument("refine_min_volume",
-                                   "paper_orientation: refine_min_volume must be >= 0 and finite, got " +
-                                       certipose::detail::format_double(options_.refine_min_volume));
+        if (!(options_.refine_min_fraction >= 0.0) || !std::isfinite(options_.refine_min_fraction))
+            throw invalid_argument("refine_min_fraction",
+                                   "paper_orientation: refine_min_fraction must be >= 0 and finite, got " +
+                                       certipose::detail::format_double(options_.refine_min_fraction));
     }
 
     const paper_orientation_options& options() const noexcept { return options_; }
@@ -412,12 +403,16 @@ public:
     /// the scales of the paper's box that certified. The next search tries the box at those
     /// scales around its own aim, then one step wider (×1.5), and searches only when the first
     /// fails (halving from below the hint's scale, then the scales above it): at a neighbour's
-    /// scales most boxes of a cell certify at once, where a search of their own spent ~24
-    /// evaluations, mostly failed refinements (plate_holes, facet 7).
+    /// scales most boxes of a cell certify at once, where a search of their own spends many
+    /// evaluations, mostly on failed refinements.
     struct hint {
         double scale = 0.0;       ///< of φ and γ (and β unless widened), in (0, 1]; 0: nothing known
         double beta_scale = 0.0;  ///< of β, after widening toward the paper's [β]
+        double cell = 0.0;        ///< width of the cell of ε_p it serves (0: unknown)
     };
+
+    /// A hint for a cell `cell_width` (ε_p) wide, knowing nothing yet.
+    hint new_hint(double cell_width) const noexcept { return hint{.cell = cell_width}; }
 
     /// Certified orientation boxes for `position` (at most one; see the header comment).
     /// Throws invalid_argument("orientation_eps") unless ε_o is positive and finite, and
@@ -441,8 +436,7 @@ public:
     /// hint, and no search. Null or empty hints are skipped; none left: nothing, at no cost.
     /// The search of a box stops halving at ε_o, while a neighbour's scale (found by halving
     /// and refining the neighbour's own, wider, candidate box) may name a narrower box that
-    /// certifies: on angle_block and plate_holes such boxes held 3–5 % of the true valid
-    /// positions (bench_completeness: 56.9 → 60.0 %, 29.3 → 34.4 %).
+    /// certifies (docs/completeness.md measures what this adds).
     template <Interval I, CameraModel C>
     orientation_result<I> orient_borrowed(const position_box<I>& position, const facet& f, const C& camera,
                                           double orientation_eps, std::span<const hint* const> neighbours) const {
@@ -471,165 +465,201 @@ private:
         // thread, which a user's policy wrapping this one may do while the search runs.
         const fov_frustum<I> frustum = frustum_of<I>(camera);
         const auto aim = nominal_aim(position, f);
-        const beta_contraction beta = options_.beta_acid  ? beta_contraction::hc4_acid
-                                      : options_.beta_hc4 ? beta_contraction::hc4
-                                                          : beta_contraction::none;
-        const auto cand = paper_candidate(position, f, camera.fov_half_angles(), frustum, beta);
+        const auto cand = paper_candidate(position, f, camera.fov_half_angles(), frustum, beta_contraction::none);
         if (!aim || !cand) return out;
 
-        const std::array<double, 3> nominal{aim->phi, aim->gamma, aim->beta};
-        std::array<double, 3> centre = nominal;
-        if (!contains(*cand, nominal)) centre = midpoint(*cand);
+        std::array<double, 3> centre{aim->phi, aim->gamma, aim->beta};
+        if (!contains(*cand, centre)) centre = midpoint(*cand);
         const fov_position<I> prepared(position, f);  // the position-only half of every certification
-        const auto certified = [&](const orientation_box<I>& b) {
-            return certify_tiled(prepared, b, frustum, out.certifications);
-        };
-        const auto budget_left = [&] { return out.certifications < options_.max_certifications; };
-
-        // The paper's box shrunk toward the centre by s; β kept whole when `roll_free` (the
-        // roll-free cone does not care how wide β is, so shrinking it would be wasted).
-        const auto search = [&](bool roll_free) -> std::optional<orientation_box<I>> {
-            const auto scaled = [&](double s) {
-                orientation_box<I> b;
-                for (std::size_t j = 0; j < 3; ++j)
-                    b[j] = roll_free && j == 2 ? (*cand)[2]
-                                               : I(centre[j] + s * (lower((*cand)[j]) - centre[j]),
-                                                   centre[j] + s * (upper((*cand)[j]) - centre[j]));
-                return b;
-            };
-            const auto narrow = [&](const orientation_box<I>& b) {  // every shrunk angle below ε_o
-                for (std::size_t j = 0; j < 3; ++j)
-                    if (!(roll_free && j == 2) && width(b[j]) >= orientation_eps) return false;
-                return true;
-            };
-            const auto with_beta = [&](orientation_box<I> b, double s) {
-                if (!roll_free) b[2] = scaled(s)[2];
-                return b;
-            };
-            // The neighbour's box, as it was found (scale refined, β widened), around this box's
-            // own aim: most boxes of a cell certify it at once, and searching on would mostly
-            // spend failed certifications to find what it holds.
-            const bool hinted = from.scale > 0.0 && from.scale <= 1.0;  // refined scales reach past 1/2
-            const bool first = hinted && from.beta_scale >= from.scale && from.beta_scale <= 1.0;
-            if (first) {
-                const auto b = with_beta(scaled(from.scale), from.beta_scale);
-                const std::size_t before = out.certifications;
-                if (certified(b)) {
-                    // One step wider: a smaller position box, or one nearer the facet's axis, may
-                    // hold a wider aim than the neighbour's (the hint then moves up with it). Only
-                    // when the hint's box took one evaluation: one that needed tiling is near
-                    // the edge of what certifies, and a wider box then certified for 1 in 8
-                    // (plate_holes, facet 7), at ~3.4 failed evaluations each.
-                    const hint up{std::min(1.0, 1.5 * from.scale), std::min(1.0, 1.5 * from.beta_scale)};
-                    const auto wider = with_beta(scaled(up.scale), up.beta_scale);
-                    if (up.scale > from.scale && out.certifications == before + 1 && budget_left() && certified(wider)) {
-                        from = up;
-                        return wider;
-                    }
-                    return b;
-                }
-            }
-            if (borrowed) return std::nullopt;  // the box's own search has failed already
-            // ... else the search, from the hint's scale when there is one.
-            const bool tried = first && (roll_free || from.beta_scale == from.scale);  // scaled(from.scale) failed
-            // The smallest scale the halving would try (the first whose box is narrower than
-            // ε_o): with β whole (roll-free), when even that box fails so does every wider one
-            // (they contain it), and the halving would spend ~19 failed certifications to learn
-            // it. Most position boxes no orientation fits are such (wider than ε_p, bisected
-            // next): plate_holes, facet 7. Not with β scaled too: a wider box may reach the
-            // roll-free cone test, which certifies what the centred form of a narrow one cannot.
-            double floor = 0.0;
-            if (roll_free || !hinted) {
-                double narrowest = 0.5;
-                while (narrowest > 1e-6 && !narrow(scaled(narrowest))) narrowest *= 0.5;
-                if (roll_free) {
-                    floor = narrowest;
-                    if ((tried && from.scale == floor) || !certified(scaled(floor))) return std::nullopt;
-                } else if (fov_refuted(prepared, scaled(narrowest), frustum)) {
-                    // Without a hint the halving tries boxes that all contain this one (the
-                    // scales from 1/2 down to it), so they all hold its failing pose: none can
-                    // certify.
-                    return std::nullopt;
-                }
-            }
-            std::optional<orientation_box<I>> best;
-            double s_ok = 1.0, s_fail = 1.0;
-            // Halve toward the centre until certified, or until the box is narrower than ε_o
-            // (from s = 1/2: the paper's box itself does not certify, see the header comment),
-            // or from the hint's scale; from a certified hint, double while certified (up to 1/2).
-            double start = 0.5;
-            if (hinted) {
-                const auto b = scaled(from.scale);
-                if (!tried && certified(b)) {
-                    best = b, s_ok = from.scale, s_fail = 2 * from.scale;
-                    while (2 * s_ok <= 0.5 && budget_left()) {
-                        const auto wider = scaled(2 * s_ok);
-                        if (!certified(wider)) break;
-                        best = wider, s_ok *= 2, s_fail = 2 * s_ok;
-                    }
-                } else if (!narrow(b)) {
-                    start = from.scale / 2;
-                } else {
-                    start = 0.0;  // the hint's box is narrower than ε_o already: nothing below it
-                }
-            }
-            const auto halve = [&](double from_scale, double down_to) {
-                for (double s = from_scale; !best && budget_left() && s > down_to; s *= 0.5) {
-                    if (s <= floor) {  // the floor's box is certified (above)
-                        best = scaled(floor), s_ok = floor, s_fail = 2 * s;
-                        break;
-                    }
-                    const auto b = scaled(s);
-                    if (hinted && s == from.scale) {  // the hint's own box: it failed above
-                        if (narrow(b)) break;
-                        continue;
-                    }
-                    if (certified(b)) {
-                        best = b, s_ok = s, s_fail = 2 * s;
-                        break;
-                    }
-                    if (narrow(b)) break;
-                }
-            };
-            halve(start, 1e-6);
-            // Below a failed hint nothing certified: the scales above it, which the halving
-            // from 1/2 would have tried, may still (the box need not be like its neighbour's).
-            if (!best && start < 0.5) halve(0.5, start);
-            if (!best) return std::nullopt;
-            // Small boxes keep the scale found (refine_min_volume).
-            const bool refine = !(volume(position) < options_.refine_min_volume);
-            for (int i = 0; refine && i < options_.refine_steps && budget_left(); ++i) {
-                const double s = 0.5 * (s_ok + s_fail);
-                const auto b = scaled(s);
-                if (certified(b)) best = b, s_ok = s;
-                else s_fail = s;
-            }
-            // Widen β alone toward the paper's [β] (the whole of it usually certifies).
-            double lo = s_ok;
-            if (refine && best->x[2] != (*cand)[2]) {
-                double hi = 1.0;
-                for (int i = 0; i <= options_.widen_steps && budget_left(); ++i) {
-                    const double s = i == 0 ? hi : 0.5 * (lo + hi);
-                    const auto b = with_beta(*best, s);
-                    if (certified(b)) {
-                        best = b, lo = s;
-                        if (i == 0) break;
-                    } else {
-                        hi = s;
-                    }
-                }
-            }
-            from = hint{s_ok, lo};
-            return best;
-        };
-
+        // Small boxes keep the scale found (refine_min_fraction of the hint's cell).
+        const bool refine = !(volume(position) < options_.refine_min_fraction * (from.cell * from.cell * from.cell));
         const bool whole_roll = width((*cand)[2]) >= 2 * detail::orientation::pi_lo;
-        std::optional<orientation_box<I>> best = search(whole_roll);
-        if (!best && whole_roll && budget_left()) best = search(false);  // not roll-free after all
-        if (!best) return out;
-        out.boxes.push_back(*best);
+        std::optional<orientation_box<I>> best =
+            scale_search<I>(*this, *cand, centre, prepared, frustum, orientation_eps, whole_roll, out.certifications)
+                .run(from, borrowed, refine);
+        if (!best && whole_roll && out.certifications < options_.max_certifications)  // not roll-free after all
+            best = scale_search<I>(*this, *cand, centre, prepared, frustum, orientation_eps, false, out.certifications)
+                       .run(from, borrowed, refine);
+        if (best) out.boxes.push_back(*best);
         return out;
     }
+
+    /// The search of steps 4–5 of the header comment for one position box: the paper's box
+    /// shrunk toward `centre` by a scale s, with β kept whole when `roll_free` (the roll-free
+    /// cone does not care how wide β is, so shrinking it would be wasted). Its steps, in order:
+    /// the hint's box (`hinted_box`), the narrowest box the halving would try (`floor_may_certify`),
+    /// the halving (`start_scale`, `halve`), then `refine_scale` and `widen_beta`.
+    template <Interval I>
+    class scale_search {
+    public:
+        scale_search(const paper_orientation& policy, const orientation_box<I>& candidate, std::array<double, 3> centre,
+                     const fov_position<I>& prepared, const fov_frustum<I>& frustum, double orientation_eps,
+                     bool roll_free, std::size_t& certifications)
+            : policy_(policy), cand_(candidate), centre_(centre), prepared_(prepared), frustum_(frustum),
+              eps_(orientation_eps), roll_free_(roll_free), certifications_(certifications) {}
+
+        /// The certified box found (and `from` updated to its scales), or nothing. `borrowed`:
+        /// only the hint's box; `refine`: refine the scale and widen β once one certifies.
+        std::optional<orientation_box<I>> run(hint& from, bool borrowed, bool refine) {
+            const bool hinted = from.scale > 0.0 && from.scale <= 1.0;  // refined scales reach past 1/2
+            const bool first = hinted && from.beta_scale >= from.scale && from.beta_scale <= 1.0;
+            if (first)
+                if (auto b = hinted_box(from)) return b;
+            if (borrowed) return std::nullopt;  // the box's own search has failed already
+            // ... else the search, from the hint's scale when there is one.
+            const bool tried = first && (roll_free_ || from.beta_scale == from.scale);  // scaled(from.scale) failed
+            if ((roll_free_ || !hinted) && !floor_may_certify(from, tried)) return std::nullopt;
+            const double start = start_scale(from, hinted, tried);
+            halve(start, 1e-6, from, hinted);
+            // Below a failed hint nothing certified: the scales above it, which the halving
+            // from 1/2 would have tried, may still (the box need not be like its neighbour's).
+            if (!best_ && start < 0.5) halve(0.5, start, from, hinted);
+            if (!best_) return std::nullopt;
+            if (refine) refine_scale();
+            const double beta = refine ? widen_beta() : s_ok_;
+            from.scale = s_ok_, from.beta_scale = beta;
+            return best_;
+        }
+
+    private:
+        orientation_box<I> scaled(double s) const {
+            orientation_box<I> b;
+            for (std::size_t j = 0; j < 3; ++j)
+                b[j] = roll_free_ && j == 2 ? cand_[2]
+                                            : I(centre_[j] + s * (lower(cand_[j]) - centre_[j]),
+                                                centre_[j] + s * (upper(cand_[j]) - centre_[j]));
+            return b;
+        }
+        bool narrow(const orientation_box<I>& b) const {  // every shrunk angle below ε_o
+            for (std::size_t j = 0; j < 3; ++j)
+                if (!(roll_free_ && j == 2) && width(b[j]) >= eps_) return false;
+            return true;
+        }
+        orientation_box<I> with_beta(orientation_box<I> b, double s) const {
+            if (!roll_free_) b[2] = scaled(s)[2];
+            return b;
+        }
+        bool certified(const orientation_box<I>& b) { return policy_.certify_tiled(prepared_, b, frustum_, certifications_); }
+        bool budget_left() const { return certifications_ < policy_.options_.max_certifications; }
+
+        /// The neighbour's box, as it was found (scale refined, β widened), around this box's own
+        /// aim: most boxes of a cell certify it at once, and searching on would mostly spend
+        /// failed certifications to find what it holds.
+        std::optional<orientation_box<I>> hinted_box(hint& from) {
+            const auto b = with_beta(scaled(from.scale), from.beta_scale);
+            const std::size_t before = certifications_;
+            if (!certified(b)) return std::nullopt;
+            // One step wider: a smaller position box, or one nearer the facet's axis, may hold a
+            // wider aim than the neighbour's (the hint then moves up with it). Only when the
+            // hint's box took one evaluation: one that needed tiling is near the edge of what
+            // certifies, and a wider box then rarely certifies.
+            hint up = from;
+            up.scale = std::min(1.0, 1.5 * from.scale), up.beta_scale = std::min(1.0, 1.5 * from.beta_scale);
+            const auto wider = with_beta(scaled(up.scale), up.beta_scale);
+            if (up.scale > from.scale && certifications_ == before + 1 && budget_left() && certified(wider)) {
+                from = up;
+                return wider;
+            }
+            return b;
+        }
+
+        /// The smallest scale the halving would try (the first whose box is narrower than ε_o).
+        /// With β whole (roll-free), when even that box fails so does every wider one (they
+        /// contain it), and the halving would spend many failed certifications to learn it; most
+        /// position boxes no orientation fits are such (wider than ε_p, bisected next). With β
+        /// scaled too, a wider box may reach the roll-free cone test, which certifies what the
+        /// centred form of a narrow one cannot: there only a refutation of the narrowest box
+        /// (held by every box of the halving) ends the search.
+        bool floor_may_certify(const hint& from, bool tried) {
+            double narrowest = 0.5;
+            while (narrowest > 1e-6 && !narrow(scaled(narrowest))) narrowest *= 0.5;
+            if (roll_free_) {
+                floor_ = narrowest;
+                return !(tried && from.scale == floor_) && certified(scaled(floor_));
+            }
+            return !fov_refuted(prepared_, scaled(narrowest), frustum_);
+        }
+
+        /// Where the halving starts: from 1/2 (the paper's box itself does not certify, see the
+        /// header comment), or below the hint's scale; from a certified hint, it doubles while
+        /// certified (up to 1/2) instead, and the halving has nothing left to do.
+        double start_scale(const hint& from, bool hinted, bool tried) {
+            if (!hinted) return 0.5;
+            const auto b = scaled(from.scale);
+            if (!tried && certified(b)) {
+                best_ = b, s_ok_ = from.scale, s_fail_ = 2 * from.scale;
+                while (2 * s_ok_ <= 0.5 && budget_left()) {
+                    const auto wider = scaled(2 * s_ok_);
+                    if (!certified(wider)) break;
+                    best_ = wider, s_ok_ *= 2, s_fail_ = 2 * s_ok_;
+                }
+                return 0.5;
+            }
+            if (!narrow(b)) return from.scale / 2;
+            return 0.0;  // the hint's box is narrower than ε_o already: nothing below it
+        }
+
+        /// Halves toward the centre from `from_scale` until a box certifies, or the box is
+        /// narrower than ε_o, or the scale reaches `down_to`.
+        void halve(double from_scale, double down_to, const hint& from, bool hinted) {
+            for (double s = from_scale; !best_ && budget_left() && s > down_to; s *= 0.5) {
+                if (s <= floor_) {  // the floor's box is certified (floor_may_certify)
+                    best_ = scaled(floor_), s_ok_ = floor_, s_fail_ = 2 * s;
+                    return;
+                }
+                const auto b = scaled(s);
+                if (hinted && s == from.scale) {  // the hint's own box: it failed already
+                    if (narrow(b)) return;
+                    continue;
+                }
+                if (certified(b)) {
+                    best_ = b, s_ok_ = s, s_fail_ = 2 * s;
+                    return;
+                }
+                if (narrow(b)) return;
+            }
+        }
+
+        /// Bisection on the scale between the largest certified one and the next that failed.
+        void refine_scale() {
+            for (int i = 0; i < policy_.options_.refine_steps && budget_left(); ++i) {
+                const double s = 0.5 * (s_ok_ + s_fail_);
+                const auto b = scaled(s);
+                if (certified(b)) best_ = b, s_ok_ = s;
+                else s_fail_ = s;
+            }
+        }
+
+        /// Widens β alone toward the paper's [β] (the whole of it usually certifies); the scale
+        /// of β reached.
+        double widen_beta() {
+            double lo = s_ok_;
+            if (best_->x[2] == cand_[2]) return lo;
+            double hi = 1.0;
+            for (int i = 0; i <= policy_.options_.widen_steps && budget_left(); ++i) {
+                const double s = i == 0 ? hi : 0.5 * (lo + hi);
+                const auto b = with_beta(*best_, s);
+                if (certified(b)) {
+                    best_ = b, lo = s;
+                    if (i == 0) break;
+                } else {
+                    hi = s;
+                }
+            }
+            return lo;
+        }
+
+        const paper_orientation& policy_;
+        const orientation_box<I>& cand_;
+        std::array<double, 3> centre_;
+        const fov_position<I>& prepared_;
+        const fov_frustum<I>& frustum_;
+        double eps_;
+        bool roll_free_;
+        std::size_t& certifications_;
+        std::optional<orientation_box<I>> best_{};
+        double s_ok_ = 1.0, s_fail_ = 1.0, floor_ = 0.0;
+    };
 
 public:
     /// Proves `box` by `certify_fov`, splitting it while undecided (at most `tiling_budget`
@@ -639,8 +669,7 @@ public:
     bool certify_tiled(const fov_position<I>& position, const orientation_box<I>& box,
                        const fov_frustum<I>& frustum, std::size_t& certifications) const {
         // The sines and cosines of a box's bounds and centre go with it: the refutation and the
-        // first evaluation share all their bounds, and a tile all but the two its split made
-        // (~45 % fewer sines and cosines on plate_holes, facet 7).
+        // first evaluation share all their bounds, and a tile all but the two its split made.
         detail::orientation::angle_trig trig;
         if (fov_refuted(position, box, frustum, trig)) return false;
         std::vector<std::pair<orientation_box<I>, detail::orientation::angle_trig>> stack{{box, trig}};

@@ -30,7 +30,6 @@
 #include <chrono>
 #include <concepts>
 #include <cstddef>
-#include <cstdint>
 #include <deque>
 #include <functional>
 #include <limits>
@@ -48,47 +47,9 @@
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/detail/fenv.hpp"
 #include "certipose/interval/operations.hpp"
+#include "certipose/outcome.hpp"  // box_class, termination, verdict
 
 namespace certipose {
-
-/// What the paver made of a box (the classes of Algorithm 1, plus the two states of a tree
-/// node that is not a leaf of the final paving).
-enum class box_class : std::uint8_t {
-    valid,      ///< every point satisfies the constraints (certified by the inner test)
-    boundary,   ///< undecided and narrower than the bisector's precision
-    discarded,  ///< certified to hold no solution (contracted to empty, or the test violated)
-    bisected,   ///< split into two children (tree nodes only)
-    pending     ///< not classified because the run stopped early
-};
-
-/// Why a run ended.
-enum class termination : std::uint8_t {
-    completed,   ///< the list of unclassified boxes ran empty
-    box_budget,  ///< `max_boxes` boxes were processed
-    deadline,    ///< the time limit or deadline passed
-    cancelled    ///< the stop token was triggered or the progress callback returned false
-};
-
-inline const char* to_string(box_class c) noexcept {
-    switch (c) {
-        case box_class::valid: return "valid";
-        case box_class::boundary: return "boundary";
-        case box_class::discarded: return "discarded";
-        case box_class::bisected: return "bisected";
-        case box_class::pending: return "pending";
-    }
-    return "?";
-}
-
-inline const char* to_string(termination t) noexcept {
-    switch (t) {
-        case termination::completed: return "completed";
-        case termination::box_budget: return "box_budget";
-        case termination::deadline: return "deadline";
-        case termination::cancelled: return "cancelled";
-    }
-    return "?";
-}
 
 namespace detail {
 template <class Box>

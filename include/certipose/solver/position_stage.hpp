@@ -7,25 +7,28 @@
 // otherwise it is bisected (largest-first by default) down to ε_p and then kept as BOUNDARY.
 // Occlusion is only asked about boxes the constraints already certify: elsewhere the box is
 // bisected anyway, and the exact occlusion test is the expensive part.
-// Past the paper, a partly valid box is not only bisected (position_stage_options):
-//  * Inner contraction: when the set can contract its complement (ComplementContractingSet),
-//    the part of an undecided box that certainly satisfies every constraint is carved off
-//    (solver/detail/carving.hpp) and goes straight to occlusion; only the rest is bisected. The
+// With `carving` (solve_options::paving, solver/paving.hpp), a partly valid box is not only
+// bisected:
+//  * Inner contraction: the part of an undecided box that certainly satisfies every constraint
+//    is carved off (solver/detail/carving.hpp; the set contracts its complement,
+//    ComplementContractingSet) and goes straight to occlusion; only the rest is bisected. The
 //    paper gives up a layer about ε_p thick along every constraint boundary; this keeps it.
-//  * Occlusion cuts: when the occlusion policy can name the shadows of the triangles that may
-//    block (ShadowingOcclusionPolicy), the part of an occlusion-PARTIAL box outside all of them
-//    is carved off as VALID. The triangles that may block are named by one walk of the occlusion
-//    policy's tree per box, and the boxes inside it inherit their shadows: the pieces a carving
-//    cuts off a box and its rest share one walk of the whole box.
+//  * Occlusion cuts: the part of an occlusion-PARTIAL box outside the shadows of every triangle
+//    that may block (ShadowingOcclusionPolicy) is carved off as VALID. The triangles are named
+//    by one walk of the occlusion policy's tree per box, and the boxes inside it inherit their
+//    shadows: the pieces a carving cuts off a box and its rest share one walk of the whole box.
+//  * Corner boxes: of a box the bisector declines and that stays undecided, the largest box
+//    certified from one of its corners is VALID and only the rest BOUNDARY (a staircase of
+//    `corner_depth` steps along the boundary).
 // The stage is one InnerSeparator of the paver, whose state says whether the set already holds
 // on the whole box (an ancestor or a carving proved it): such boxes skip the contractor and the
 // set's test, which could not remove or decide anything, and go straight to occlusion. A box
 // the bisector will not split is asked with occlusion_effort::visible_only (when the policy
 // takes it): OCCLUDED would discard it and PARTIAL makes it BOUNDARY, so the costly search for
 // an OCCLUDED certificate only decides which of the two non-VALID labels it gets. Such boxes
-// are BOUNDARY with reason `occlusion`. With occlusion cuts, no box is asked for an OCCLUDED
-// proof unless position_stage_options::occluded_proofs_with_cuts says so (then only boxes whose
-// halves would be split again; position_separator::prove_occluded).
+// are BOUNDARY with reason `occlusion`. OCCLUDED proofs (which prune a box and its subtree) are
+// looked for on the boxes the bisector splits only in the paper's paving: with occlusion cuts,
+// the shadows decide most of what a proof would, for a fraction of its cost.
 #pragma once
 
 #include <algorithm>
@@ -44,41 +47,62 @@
 #include "certipose/paver/paver.hpp"
 #include "certipose/solver/contraction.hpp"
 #include "certipose/solver/detail/carving.hpp"
+#include "certipose/solver/detail/shadow_walk.hpp"
+#include "certipose/solver/paving.hpp"
 #include "certipose/solver/task.hpp"
 
 namespace certipose {
 
-/// The position stage's options beyond the paper (solve_options carries them).
-struct position_stage_options {
-    /// Carve the part of an undecided box that certainly satisfies the constraint set off it
-    /// (sets modelling ComplementContractingSet; the paper's set does).
-    bool inner_contraction = true;
-    /// Carve the certainly visible part off an occlusion-PARTIAL box (occlusion policies
-    /// modelling ShadowingOcclusionPolicy; aabb_occlusion does).
-    bool occlusion_cuts = true;
-    /// Pieces thinner than this (metres, in the dimension they are cut in) stay with the rest;
-    /// 0: a tenth of the bisector's precision.
-    double min_piece = 0.0;
-    /// Leaf corner boxes: of a box the bisector declines and that stays undecided, the largest
-    /// box certified from one of its corners (solver/detail/carving.hpp, corner_box) is VALID
-    /// and only the rest BOUNDARY. Its visibility costs one occlusion test (or the shadows).
-    bool leaf_corner_boxes = true;
-    /// Corner boxes split off one leaf in a row: the rest of a leaf's corner box may give one
-    /// of its own, and so on, this many times (a staircase along the boundary; at most 255).
-    std::size_t corner_depth = 2;
-    /// A rest box gives a corner box only when no side of it is thinner than this many
-    /// `min_piece` (solve_options::corner_rest_min_pieces).
-    double corner_rest_min_pieces = 3.0;
-    /// Look for OCCLUDED proofs (which prune a box and its subtree) on the boxes the bisector
-    /// splits (position_separator::prove_occluded): without occlusion cuts (the paper's paving)
-    /// on every such box, with them only as `occluded_proofs_with_cuts` says.
+namespace detail {
+/// What the separator does with a partly valid box: the paving choice, made concrete for one
+/// run (the minimal piece in metres), plus what refinement changes.
+struct separator_rules {
+    bool inner_contraction = false;
+    bool occlusion_cuts = false;
+    bool corner_boxes = false;
+    std::size_t corner_depth = 1;
+    double rest_min_pieces = 0;
+    double min_piece = 0;  ///< metres
+    /// Look for OCCLUDED proofs on the boxes the bisector splits (the paper's paving; off with
+    /// occlusion cuts, and in refinement, where they rarely succeed).
     bool occluded_proofs = true;
-    /// With occlusion cuts, look for OCCLUDED proofs on the boxes whose halves would be split
-    /// again. Off by default: on every 20th facet of the four reference parts they pruned 1.7 %
-    /// of the BOUNDARY boxes (fewer, larger ones instead) for 22 % of the run's time, and no
-    /// VALID box changed; the cuts' shadows decide most of what a proof would.
-    bool occluded_proofs_with_cuts = false;
+
+    static separator_rules from(const paving_choice& paving, double position_eps) {
+        separator_rules r;
+        r.min_piece = position_eps / 10;
+        if (const carving* c = carving_of(paving)) {
+            r.inner_contraction = c->inner_contraction;
+            r.occlusion_cuts = c->occlusion_cuts;
+            r.corner_boxes = c->corner_boxes;
+            r.corner_depth = c->corner_depth;
+            r.rest_min_pieces = c->rest_min_pieces;
+            r.min_piece = c->min_piece(position_eps);
+        }
+        r.occluded_proofs = !r.occlusion_cuts;
+        return r;
+    }
 };
+}  // namespace detail
+
+/// A step of `carving` that is on for policies without the capability it needs is an error, not
+/// a silent change of algorithm: throws invalid_argument naming the step and the concept.
+template <class Set, class Occlusion, Interval I>
+void check_paving(const paving_choice& paving) {
+    const carving* c = carving_of(paving);
+    if (!c) return;
+    if constexpr (!ComplementContractingSet<Set, I>)
+        if (c->inner_contraction)
+            throw invalid_argument("paving.inner_contraction",
+                                   "carving: inner contraction needs a constraint set modelling "
+                                   "certipose::ComplementContractingSet (contract_complement); this one does not: set "
+                                   "carving::inner_contraction = false");
+    if constexpr (!ShadowingOcclusionPolicy<Occlusion, I>)
+        if (c->occlusion_cuts)
+            throw invalid_argument("paving.occlusion_cuts",
+                                   "carving: occlusion cuts need an occlusion policy modelling "
+                                   "certipose::ShadowingOcclusionPolicy (blockers, shadow), e.g. aabb_occlusion; this "
+                                   "one does not: set carving::occlusion_cuts = false");
+}
 
 /// Counters of the position stage.
 struct position_stage_counters {
@@ -107,24 +131,15 @@ struct position_separator {
     using box = position_box<I>;
     struct state {
         bool certified = false;  ///< the constraint set holds on the whole box
-        bool visible = false;    ///< occlusion: VISIBLE from the whole box
         /// How many corner boxes were split off the leaf this box is left of (0: none). A rest
         /// box is not split; below options.corner_depth it may give a corner box of its own.
         std::uint8_t rest = 0;
         /// For a box left undecided by the set where the bisector stops: the constraint that
         /// stayed undecided (the BOUNDARY box's reason), found by the same evaluation as the test.
         std::optional<boundary_reason> why{};
-        /// The shadows of every triangle that may block a sight line from the box (found for
-        /// an ancestor: one tree walk serves all the boxes below it); null until needed. The
-        /// set owns the cache it points into: the state may outlive this separator (refinement).
-        std::shared_ptr<const shadow_set<I>> shadows{};
-        /// After a walk for shadows gave up (too many possible blockers, or not strictly in
-        /// front of the facet): the largest width of the box it walked, or 1.25 times that for
-        /// the whole box of a carving, whose pieces are often much thinner (see separate); 0:
-        /// none did. The walk is asked again only for boxes at most half this wide: one just a
-        /// little smaller would almost surely give up too, and each failed walk costs as much
-        /// as a successful one.
-        double walk_failed_width = 0;
+        /// What is known of the sight lines from the box (visible, the shadows of what may
+        /// block them, a walk that gave up): found for an ancestor, it serves the boxes inside.
+        sight<I> seen{};
         friend bool operator==(const state&, const state&) = default;
     };
 
@@ -133,14 +148,10 @@ struct position_separator {
     const Occlusion* occlusion;
     std::size_t facet;
     Bisector bisector;  // a copy of the paver's: asked only whether it would split the box
-    position_stage_options options;
-    double min_piece;
+    separator_rules options;
     position_stage_counters* count;
-    /// Prepared shadows by triangle, shared by the separators of one facet's passes (a copy of
-    /// a separator shares it too: one facet's paving runs on one thread).
-    std::shared_ptr<shadow_cache<I>> cache = std::make_shared<shadow_cache<I>>();
-    std::vector<std::size_t> found_{};  // the triangles one walk names, and their shadows
-    shadow_list<I> named_{};            // (kept: no allocation per walk)
+    /// The walks for shadows (occlusion cuts), with the facet's cache of prepared shadows.
+    shadow_walker<Occlusion, I> walker;
 
     verdict separate(box& b, state& s, piece_sink<box, state>& sink) {
         const bool leaf = !bisector.choose(b).has_value();
@@ -161,21 +172,18 @@ struct position_separator {
                         } else {
                             const box whole = b;
                             std::vector<box> pieces;
-                            count->inner_pieces += carve(b, failing, min_piece, [&](box&& piece) { pieces.push_back(std::move(piece)); });
+                            count->inner_pieces += carve(b, failing, options.min_piece, [&](box&& piece) { pieces.push_back(std::move(piece)); });
                             // The pieces (certified: each asks occlusion) and, for a leaf, the rest
                             // (its corner staircase) would each walk the tree: one walk for the
                             // whole box serves them all. When it gives up, boxes inside walk
                             // again only once they are at most 5/8 as wide (not 1/2 as below a
-                            // box of their own: a piece is often much thinner than the whole).
-                            // Of the pieces' own walks after a failed one, 84 % gave up too
-                            // (featuretype, facet 3262); on every 20th facet of the four
-                            // reference parts this rule was 2-7 % faster than always walking
-                            // again, with slightly more VALID boxes and volume on each part.
+                            // box of their own: a piece is often much thinner than the whole, and
+                            // most pieces' own walks after a failed one give up too).
                             if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
-                                if (!pieces.empty() && options.occlusion_cuts && may_walk(whole, s)) {
+                                if (!pieces.empty() && options.occlusion_cuts && walker.may_walk(whole, s.seen)) {
                                     bool covered = false;
                                     box reach = box::empty();
-                                    if (!walk(whole, s, false, reach, covered)) s.walk_failed_width = 1.25 * max_width(whole);
+                                    if (!walker.walk(whole, s.seen, false, reach, covered)) s.seen.walk_failed_width = 1.25 * max_width(whole);
                                 }
                             }
                             for (auto& piece : pieces) {
@@ -190,10 +198,10 @@ struct position_separator {
                     // Where the bisector stops, the constraint still undecided is the BOUNDARY
                     // box's reason (asked now: the state carries it to the end of the run).
                     if (leaf) s.why = undecided_constraint<I>(*set, b);
-                    if (leaf && options.leaf_corner_boxes && s.rest < options.corner_depth &&
-                        see(b, s, false) != visibility::occluded && (s.visible || s.shadows))
+                    if (leaf && options.corner_boxes && s.rest < options.corner_depth &&
+                        see(b, s, false) != visibility::occluded && (s.seen.visible || s.seen.shadows))
                         return staircase(b, s, sink, [&](const box& q) {
-                            return set->test(q) == verdict::satisfied && (s.visible || outside(s.shadows->list, q));
+                            return set->test(q) == verdict::satisfied && (s.seen.visible || walker.outside(s.seen.shadows->list, q));
                         }, [&] { s.why = undecided_constraint<I>(*set, b); });
                     return verdict::undecided;
                 }
@@ -201,16 +209,16 @@ struct position_separator {
             s.certified = true;
         }
         box blocked = b;  // what the shadows may reach of b (see)
-        const visibility seen = see(b, s, prove_occluded(b, leaf), &blocked);
+        const visibility seen = see(b, s, prove_occluded(leaf), &blocked);
         if (seen == visibility::visible) return verdict::satisfied;
         if (seen == visibility::occluded) return verdict::violated;
-        if (!s.shadows) return verdict::undecided;
+        if (!s.seen.shadows) return verdict::undecided;
         // Occlusion cut: whatever lies outside the hull of the shadows in b sees the facet.
         if (s.rest >= options.corner_depth) return verdict::undecided;
         if (!(blocked == b))
-            count->occlusion_pieces += carve(b, blocked, min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
-        if (leaf && options.leaf_corner_boxes)
-            return staircase(b, s, sink, [&](const box& q) { return outside(s.shadows->list, q); }, [] {});
+            count->occlusion_pieces += carve(b, blocked, options.min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
+        if (leaf && options.corner_boxes)
+            return staircase(b, s, sink, [&](const box& q) { return walker.outside(s.seen.shadows->list, q); }, [] {});
         return verdict::undecided;
     }
 
@@ -222,12 +230,12 @@ private:
     /// is possible then, but an OCCLUDED proof may prune it). For a PARTIAL box with shadows,
     /// `blocked` receives the hull of what they may reach of b.
     visibility see(const box& b, state& s, bool full_effort, box* blocked = nullptr) {
-        if (s.visible) return visibility::visible;
-        if (s.shadows) {
+        if (s.seen.visible) return visibility::visible;
+        if (s.seen.shadows) {
             bool covered = false;
-            const box reach = shadow_hull(b, s, covered, full_effort);
+            const box reach = walker.shadow_hull(b, s.seen, covered, full_effort);
             if (is_empty(reach)) {
-                s.visible = true;
+                s.seen.visible = true;
                 return visibility::visible;
             }
             if (blocked) *blocked = reach;
@@ -236,150 +244,41 @@ private:
             // One walk of the tree decides VISIBLE (no triangle may block) and finds the
             // shadows for the cuts; the classification's own walk is then needed only to look
             // for an OCCLUDED proof, on a box that one shadow covers whole.
-            if (options.occlusion_cuts && may_walk(b, s)) {
+            if (options.occlusion_cuts && walker.may_walk(b, s.seen)) {
                 bool covered = false;
                 box reach = box::empty();
-                if (walk(b, s, full_effort, reach, covered)) {
-                    if (s.visible) return visibility::visible;
+                if (walker.walk(b, s.seen, full_effort, reach, covered)) {
+                    if (s.seen.visible) return visibility::visible;
                     if (blocked) *blocked = reach;
                     if (!(covered && full_effort)) return visibility::partial;
                 } else {
                     // More triangles may block than the walk lists: a test that only looks
-                    // for VISIBLE would find one that blocks and say PARTIAL (on every 20th
-                    // facet of the four reference parts, asking it changed no VALID box).
+                    // for VISIBLE would find one that blocks and say PARTIAL.
                     if (!full_effort) return visibility::partial;
                 }
             }
         }
         ++count->occlusion_tests;
         const visibility seen = classify(b, full_effort);
-        if (seen == visibility::visible) s.visible = true;
+        if (seen == visibility::visible) s.seen.visible = true;
         return seen;
     }
 
-    /// Is a walk for b's shadows worth it? Not within a box whose walk gave up unless b is at
-    /// most half of state::walk_failed_width wide.
-    static bool may_walk(const box& b, const state& s) {
-        return !s.visible && !s.shadows && (s.walk_failed_width == 0 || max_width(b) <= s.walk_failed_width / 2);
-    }
-
-    /// One walk of the tree for b: the shadows of the triangles that may block a sight line from
-    /// b go to s.shadows (those that may reach b; s.visible when none does), `reach` receives
-    /// the hull of what they reach of b and `covered` whether one covers all of b (asked only
-    /// with `need_covered`). False when the walk gave up (s.walk_failed_width records it).
-    bool walk(const box& b, state& s, bool need_covered, box& reach, bool& covered) {
-        // The walk only names the triangles; their shadows are contracted after it, so a walk
-        // that gives up costs no contraction.
-        found_.clear();
-        auto note = [&](std::size_t triangle) {
-            found_.push_back(triangle);
-            return true;
-        };
-        ++count->shadow_walks;
-        if (!occlusion->blockers(b, facet, note)) {
-            s.walk_failed_width = max_width(b);
-            return false;
-        }
-        named_.clear();
-        for (const std::size_t triangle : found_)
-            named_.push_back(&cache->get(triangle, [&] { return occlusion->shadow(facet, triangle); }));
-        auto found = std::make_shared<shadow_set<I>>();
-        found->storage = cache;
-        reach = reach_in(b, named_, found->list, covered, need_covered);
-        if (found->list.empty()) s.visible = true;
-        else s.shadows = std::move(found);
-        return true;
-    }
-
-    /// Calls visit(shadow, part) for each shadow of `list` that reaches b, with `part` what it
-    /// reaches of b (b contracted to the shadow), until visit returns false.
-    template <class Visit>
-    static void for_each_reaching(const box& b, const shadow_list<I>& list, Visit&& visit) {
-        const rounding_guard<I> rounding;
-        for (const auto* sh : list) {
-            box part = b;
-            contract_shadow(part, *sh);
-            if (!is_empty(part) && !visit(sh, part)) return;
-        }
-    }
-
-    /// The hull of the parts of b that the shadows of `list` may reach (empty: none does); the
-    /// shadows that may reach b are appended to `kept`, and `covered` says whether one reaches
-    /// all of b (asked only with `need_covered`: without, it may stay false once the hull is b).
-    static box reach_in(const box& b, const shadow_list<I>& list, shadow_list<I>& kept, bool& covered,
-                        bool need_covered) {
-        box reach = box::empty();
-        const rounding_guard<I> rounding;
-        for (const auto* sh : list) {
-            if (!(need_covered && !covered) && reach == b) {
-                // The hull is all of b already: what is left to ask of a shadow is whether it
-                // may reach b (the boxes inside b contract against it again). A box with many
-                // possible blockers reaches this after a few; contracting the other shadows took
-                // half the time of a fresh walk's list (idler_riser, facet 102).
-                if (shadow_may_reach(b, *sh)) kept.push_back(sh);
-                continue;
-            }
-            box part = b;
-            contract_shadow(part, *sh);
-            if (is_empty(part)) continue;
-            kept.push_back(sh);
-            reach = hull(reach, part);
-            covered = covered || part == b;
-        }
-        return reach;
-    }
-
-    /// The hull of the parts of b that the state's shadows may reach (empty: b sees the facet);
-    /// `covered`: one of them reaches all of b. Drops the shadows that miss b when that leaves
-    /// at most half of them: the boxes inside b then contract against fewer (the list is
-    /// shared with other boxes, so it is copied).
-    static box shadow_hull(const box& b, state& s, bool& covered, bool need_covered) {
-        shadow_list<I> kept;
-        const box reach = reach_in(b, s.shadows->list, kept, covered, need_covered);
-        if (!kept.empty() && 2 * kept.size() <= s.shadows->list.size())
-            s.shadows = std::make_shared<const shadow_set<I>>(shadow_set<I>{s.shadows->storage, std::move(kept)});
-        return reach;
-    }
-
     /// Is b worth a corner box of its own? A leaf's first always; a rest box (a slab of a leaf
-    /// around its corner box) only when no side of it is thinner than
-    /// `corner_rest_min_pieces` minimal pieces: thin slabs gave many boxes for little volume
-    /// (the four reference cases at corner_depth 2, 2 pieces against none: 25 % fewer VALID
-    /// boxes, a median share 62 % instead of 64 %; 3 against 2: docs/completeness.md).
+    /// around its corner box) only when no side of it is thinner than `rest_min_pieces` minimal
+    /// pieces: thin slabs give many boxes for little volume (carving::rest_min_pieces).
     bool stair_worth(const box& b, const state& s) const {
         if (s.rest == 0) return true;
         for (std::size_t k = 0; k < 3; ++k)
-            if (upper(b[k]) - lower(b[k]) < options.corner_rest_min_pieces * min_piece) return false;
+            if (upper(b[k]) - lower(b[k]) < options.rest_min_pieces * options.min_piece) return false;
         return true;
     }
 
     /// Is an OCCLUDED proof worth looking for on b (occlusion_effort::full)? It discards b and
-    /// its subtree, but where it fails it costs ~15 tree walks. The paper (no occlusion cuts)
-    /// asks for every box the bisector splits. With the cuts, most such boxes are a little
-    /// wider than ε_p, with halves that are leaves: pruning them saves two cheap tests, and
-    /// on every 20th facet of the four reference parts the proof succeeded for 2.5–13 % of them.
-    /// Asking only boxes whose halves would be split again took 8–24 % off the run for
-    /// 0.2–2.2 % more BOUNDARY boxes and the same VALID ones; since the pieces of a carving
-    /// share one walk, asking none (the default, occluded_proofs_with_cuts) takes 22 % more
-    /// for 1.7 % more BOUNDARY boxes, again with the same VALID ones.
-    bool prove_occluded(const box& b, bool leaf) {  // not const: a bisector may count its choices (round_robin)
-        if (leaf || !options.occluded_proofs) return false;
-        if (!options.occlusion_cuts) return true;
-        if (!options.occluded_proofs_with_cuts) return false;
-        const auto cut = bisector.choose(b);
-        if (!cut) return false;
-        box lo = b, hi = b;
-        lo[cut->dimension] = I(lower(b[cut->dimension]), cut->point);
-        hi[cut->dimension] = I(cut->point, upper(b[cut->dimension]));
-        return bisector.choose(lo).has_value() || bisector.choose(hi).has_value();
-    }
-
-    /// No point of q lies in a shadow of the list.
-    static bool outside(const shadow_list<I>& list, const box& q) {
-        bool none = true;
-        for_each_reaching(q, list, [&](const prepared_shadow<I>*, const box&) { return none = false; });
-        return none;
-    }
+    /// its subtree, but where it fails it costs many tree walks. The paper's paving asks for
+    /// every box the bisector splits; with occlusion cuts the shadows decide most of what a
+    /// proof would (separator_rules::occluded_proofs).
+    bool prove_occluded(bool leaf) const { return !leaf && options.occluded_proofs; }
 
     /// A leaf's corner staircase: while another step is worth it, the largest box `certified`
     /// from a corner of b (solver/detail/carving.hpp, corner_box) is VALID and b becomes one of
@@ -444,146 +343,234 @@ struct position_stage_result {
     bool refinement_stopped = false;  ///< the refinement's deadline ended it (boxes left BOUNDARY)
 };
 
-/// Paves the positions of one facet. `Set` models PositionConstraintSet over I and is built from
-/// `problem` and `parameters`; `Contraction` is a contraction policy (solver/contraction.hpp);
-/// `Bisector` is constructible from ε_p (`position_eps`, the width below which boxes are not
-/// split); `Buffer` orders the unclassified boxes.
-template <Interval I, class Set, class Contraction = contraction::hc4, class Bisector = largest_first,
+/// A contractor that owns the constraint set it is built on: `Contraction`'s contractor on a
+/// set of its own (pose_solver::position_contractor). Movable: the set stays where it is.
+template <class Set, class Contraction, Interval I>
+class owning_contractor {
+    using set_contractor_type = detail::set_contractor<Set, position_box<I>>;
+
+public:
+    using contractor_type = decltype(std::declval<const Contraction&>().wrap(std::declval<set_contractor_type>()));
+
+    owning_contractor(Set set, const Contraction& contraction)
+        : set_(std::make_unique<Set>(std::move(set))), contractor_(contraction.wrap(set_contractor_type{set_.get()})) {}
+
+    void contract(position_box<I>& box) { contractor_.contract(box); }
+    /// The set it is built on (e.g. for its `initial_box()`).
+    Set& constraint_set() noexcept { return *set_; }
+    const Set& constraint_set() const noexcept { return *set_; }
+
+private:
+    std::unique_ptr<Set> set_;
+    contractor_type contractor_;
+};
+
+/// The position stage for one facet (Algorithm 3 lines 1–27), as two named steps: `pave` at ε_p
+/// with the paving choice, then optionally `refine` its BOUNDARY boxes below ε_p. It owns the
+/// facet's constraint set, the contractor the contraction policy builds on it (`contractor()`:
+/// what the stage runs, for tests and benchmarks) and the shadow cache both steps share.
+/// `Bisector` is constructible from the width below which boxes are not split; `Buffer` orders
+/// the unclassified boxes of `pave` (refinement takes the largest first).
+template <Interval I, class Set, class Occlusion, class Contraction = contraction::set_only,
+          class Bisector = largest_first, class Buffer = depth_first>
+    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I> && ContractionPolicy<Contraction, I>
+class position_stage {
+    using set_contractor_type = detail::set_contractor<Set, position_box<I>>;
+
+public:
+    using contractor_type = decltype(std::declval<const Contraction&>().wrap(std::declval<set_contractor_type>()));
+
+    /// Throws invalid_argument when the paving choice asks for a step the policies cannot take
+    /// (check_paving) or the set's parameters are bad.
+    position_stage(const position_problem& problem, std::size_t facet_index, const Occlusion& occlusion,
+                   const paving_choice& paving, double position_eps, const constraint_parameters_t<Set>& parameters = {},
+                   Contraction contraction = {})
+        : set_(std::make_unique<Set>(make_constraint_set<Set>(problem, parameters))),
+          contraction_(std::move(contraction)),
+          occlusion_(&occlusion),
+          facet_(facet_index),
+          position_eps_(position_eps),
+          rules_(detail::separator_rules::from(paving, position_eps)) {
+        check_paving<Set, Occlusion, I>(paving);
+    }
+
+    /// The contractor the stage narrows boxes with: the contraction policy's, on the set's.
+    /// It refers to this stage's set: use it while the stage lives.
+    contractor_type contractor() const { return contraction_.wrap(set_contractor_type{set_.get()}); }
+    Set& constraint_set() const noexcept { return *set_; }
+
+    /// Paves from the set's initial box down to ε_p.
+    position_stage_result<I> pave(const paver_options& options, std::stop_token stop = {}) {
+        position_stage_result<I> out;
+        out.initial_box = set_->initial_box();
+        states_.clear();
+        if (is_empty(out.initial_box)) {
+            out.boxes.stats.reason = termination::completed;
+            return out;
+        }
+        paver<position_box<I>, identity, separator, Bisector, Buffer> p(
+            identity{}, make_separator(rules_, position_eps_, out.counters), Bisector(position_eps_), options);
+        out.boxes = p.run(out.initial_box, stop);
+        states_ = p.boundary_states();
+        return out;
+    }
+
+    /// Paves the BOUNDARY boxes of a completed `pave` again, largest first, down to
+    /// `refine.min_width`, until its deadline (solve_options::refine). Refined leaves give one
+    /// corner box each (the refinement is itself the staircase), and no OCCLUDED proofs are
+    /// looked for (nearly every box this deep has halves that would be split again, and the
+    /// proofs rarely succeed). Two passes: first the boxes the set left undecided, then those it
+    /// certified and occlusion left PARTIAL, much of whose volume is truly occluded.
+    void refine(position_stage_result<I>& out, const position_refinement& refine, const paver_options& options,
+                std::stop_token stop = {});
+
+    /// Why each BOUNDARY box of `out` was left undecided (position_stage_result::boundary_reasons).
+    void explain(position_stage_result<I>& out) const;
+
+private:
+    using separator = detail::position_separator<Set, contractor_type, Occlusion, Bisector, I>;
+    using state = typename separator::state;
+
+    separator make_separator(const detail::separator_rules& rules, double split_width,
+                             position_stage_counters& counters) const {
+        return separator{set_.get(), contractor(), occlusion_, facet_, Bisector(split_width), rules, &counters,
+                         detail::shadow_walker<Occlusion, I>(occlusion_, facet_, shadows_, &counters.shadow_walks)};
+    }
+
+    std::unique_ptr<Set> set_;  // stable address: contractors and separators point at it
+    Contraction contraction_;
+    const Occlusion* occlusion_;
+    std::size_t facet_;
+    double position_eps_;
+    detail::separator_rules rules_;
+    // One shadow cache for both steps: the states `pave` hands `refine` hold shadows from it.
+    std::shared_ptr<detail::shadow_cache<I>> shadows_ = std::make_shared<detail::shadow_cache<I>>();
+    std::vector<state> states_;  // of the BOUNDARY boxes, in their order
+};
+
+template <Interval I, class Set, class Occlusion, class Contraction, class Bisector, class Buffer>
+    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I> && ContractionPolicy<Contraction, I>
+void position_stage<I, Set, Occlusion, Contraction, Bisector, Buffer>::refine(position_stage_result<I>& out,
+                                                                              const position_refinement& refine,
+                                                                              const paver_options& options,
+                                                                              std::stop_token stop) {
+    if (out.boxes.stats.reason != termination::completed || out.boxes.boundary.empty()) return;
+    std::vector<state>& states = states_;
+    for (auto& st : states) st.rest = 0;
+    paver_options again = options;
+    if (refine.deadline && (!again.deadline || *refine.deadline < *again.deadline)) again.deadline = refine.deadline;
+    again.record_tree = false;
+    detail::separator_rules fine_rules = rules_;
+    fine_rules.corner_depth = 1;
+    fine_rules.occluded_proofs = false;
+    auto& st = out.boxes.stats;
+    // BOUNDARY boxes with their separator states, side by side (run_from takes both).
+    struct boundary_list {
+        std::vector<position_box<I>> boxes;
+        std::vector<state> states;
+    };
+    // Moves out.boxes.boundary / states into `certified` (the set certified them: PARTIAL
+    // for occlusion) and `rest`, keeping their order.
+    const auto sort_out = [&](boundary_list& certified, boundary_list& rest) {
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            boundary_list& to = states[i].certified ? certified : rest;
+            to.boxes.push_back(std::move(out.boxes.boundary[i]));
+            to.states.push_back(std::move(states[i]));
+        }
+        out.boxes.boundary.clear(), states.clear();
+    };
+    const auto append = [&](boundary_list& from) {
+        for (std::size_t i = 0; i < from.boxes.size(); ++i)
+            out.boxes.boundary.push_back(std::move(from.boxes[i])), states.push_back(std::move(from.states[i]));
+        from = {};
+    };
+    boundary_list later, refined;  // refined: BOUNDARY boxes of the passes that ran
+    {
+        boundary_list first;
+        sort_out(later, first);
+        append(first);
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1) {
+            // Reached only when pass 0 completed or had nothing to refine (the end of the
+            // loop breaks otherwise). The first pass's occlusion-only boxes join the
+            // second; its set-undecided ones are at the refinement's width already.
+            sort_out(later, refined);
+            append(later);
+        }
+        if (out.boxes.boundary.empty()) continue;
+        again.max_boxes = options.max_boxes > st.boxes ? options.max_boxes - st.boxes : 1;
+        paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(
+            identity{}, make_separator(fine_rules, refine.min_width, out.counters), Bisector(refine.min_width), again);
+        auto more = q.run_from(out.boxes.boundary, states, stop);
+        ++out.counters.refinement_passes;
+        const auto now = std::chrono::steady_clock::now();
+        out.refinement_stopped = more.stats.reason == termination::deadline && refine.deadline &&
+                                 now >= *refine.deadline && !(options.deadline && now >= *options.deadline);
+        st.boxes += more.stats.boxes, st.bisections += more.stats.bisections, st.inner_tests += more.stats.inner_tests;
+        st.valid += more.stats.valid, st.valid_volume += more.stats.valid_volume;
+        st.discarded += more.stats.discarded, st.discarded_volume += more.stats.discarded_volume;
+        st.peak_pending = std::max(st.peak_pending, more.stats.peak_pending);
+        if (!out.refinement_stopped) st.reason = more.stats.reason;
+        for (auto& v : more.valid) out.boxes.valid.push_back(std::move(v));
+        out.boxes.boundary = std::move(more.boundary);
+        states = q.boundary_states();
+        if (out.refinement_stopped) {
+            // Not refined yet, but decided as far as the paving at ε_p went: BOUNDARY, for
+            // the reason the set gives.
+            for (auto& b : more.pending) {
+                out.boxes.boundary.push_back(std::move(b));
+                states.emplace_back();
+            }
+        } else {
+            out.boxes.pending = std::move(more.pending);
+            st.pending = more.stats.pending, st.pending_volume = more.stats.pending_volume;
+        }
+        if (st.reason != termination::completed || out.refinement_stopped) break;
+    }
+    // What no pass reached (a stopped first pass leaves the second kind as it was), then
+    // what the passes left.
+    append(later);
+    append(refined);
+    st.boundary = out.boxes.boundary.size();
+    st.boundary_volume = 0;
+    for (const auto& b : out.boxes.boundary) st.boundary_volume += detail::paving_volume(b);
+}
+
+template <Interval I, class Set, class Occlusion, class Contraction, class Bisector, class Buffer>
+    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I> && ContractionPolicy<Contraction, I>
+void position_stage<I, Set, Occlusion, Contraction, Bisector, Buffer>::explain(position_stage_result<I>& out) const {
+    // A BOUNDARY box was separated just before the bisector declined it: undecided by the set
+    // (which constraint, if it says: one more test), or certified by it and PARTIAL for occlusion.
+    out.boundary_reasons.clear();
+    out.boundary_reasons.reserve(out.boxes.boundary.size());
+    for (std::size_t i = 0; i < out.boxes.boundary.size(); ++i) {
+        const state* s = i < states_.size() ? &states_[i] : nullptr;
+        out.boundary_reasons.push_back(
+            s && s->certified ? boundary_reason::occlusion
+            : s && s->why     ? *s->why
+                              : undecided_constraint<I>(*set_, out.boxes.boundary[i]).value_or(boundary_reason::occlusion));
+    }
+}
+
+/// Paves the positions of one facet with a `position_stage`: `pave`, `refine` when asked, and
+/// the BOUNDARY boxes' reasons. `Set` is built from `problem` and `parameters`.
+template <Interval I, class Set, class Contraction = contraction::set_only, class Bisector = largest_first,
           class Buffer = depth_first, class Occlusion>
-    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I>
+    requires SearchableConstraintSet<Set, I> && OcclusionPolicy<Occlusion, I> && ContractionPolicy<Contraction, I>
 position_stage_result<I> pave_positions(const position_problem& problem, std::size_t facet_index,
                                         const Occlusion& occlusion, const paver_options& options,
                                         double position_eps, std::stop_token stop = {},
                                         const constraint_parameters_t<Set>& parameters = {},
-                                        const position_stage_options& stage = {},
-                                        const std::optional<position_refinement>& refine = {}) {
-    Set set = make_constraint_set<Set>(problem, parameters);
-    position_stage_result<I> out;
-    out.initial_box = set.initial_box();
-    if (is_empty(out.initial_box)) {
-        out.boxes.stats.reason = termination::completed;
-        return out;
-    }
-    auto contractor = Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set});
-    using separator = detail::position_separator<Set, decltype(contractor), Occlusion, Bisector, I>;
-    // One shadow cache for every pass: the states a pass hands the next hold shadows from it.
-    const auto shadows = std::make_shared<detail::shadow_cache<I>>();
-    separator sep{&set, std::move(contractor), &occlusion, facet_index, Bisector(position_eps), stage,
-                  stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters, shadows};
-    paver<position_box<I>, identity, separator, Bisector, Buffer> p(identity{}, std::move(sep), Bisector(position_eps),
-                                                                    options);
-    out.boxes = p.run(out.initial_box, stop);
-    std::vector<typename separator::state> states = p.boundary_states();
-    if (refine && out.boxes.stats.reason == termination::completed && !out.boxes.boundary.empty()) {
-        // Refinement: the BOUNDARY boxes again, with what was learnt about each (the set holds,
-        // it sees the facet, its shadows), largest first, under the refinement's deadline.
-        for (auto& st : states) st.rest = 0;
-        paver_options again = options;
-        if (refine->deadline && (!again.deadline || *refine->deadline < *again.deadline)) again.deadline = refine->deadline;
-        again.record_tree = false;
-        // Refined leaves give one corner box each: the refinement itself is the staircase, and
-        // deeper ones multiply the small boxes the orientation stage must still get through
-        // before the run's deadline (plate_holes, 1 s: 38 % of the true positions certified
-        // with one, 24 % with two).
-        position_stage_options fine_stage = stage;
-        fine_stage.corner_depth = 1;
-        // No OCCLUDED proofs: down to ε_p / 16 nearly every box has halves that would be split
-        // again, so prove_occluded's rule asks one of nearly every box a shadow covers; they
-        // rarely succeed and took half of angle_block's refinement time. Without them the
-        // refinement gets through 2.5-4x the boxes in the same time (truly occluded ones are
-        // bisected and left BOUNDARY instead of pruned): at 1 s with growth, 89.2 / 74.2 /
-        // 81.6 / 88.6 % of the true positions certified became 90.2 / 75.7 / 87.5 / 88.9 %.
-        fine_stage.occluded_proofs = false;
-        auto& st = out.boxes.stats;
-        // Two passes: first the boxes the constraint set left undecided, then those it certified
-        // and occlusion left PARTIAL. By volume alone, most of a 1 s budget went to the second
-        // kind (more boxes, of which an OCCLUDED proof rarely prunes any), where much of the
-        // volume is truly occluded; first pass first raised the certified share on
-        // idler_riser / featuretype / angle_block from 81.1 / 68.4 / 63.9 % to 82.2 / 69.5 /
-        // 68.4 % (3 000 sampled true positions; bench_completeness measures the same).
-        // BOUNDARY boxes with their separator states, side by side (run_from takes both).
-        struct boundary_list {
-            std::vector<position_box<I>> boxes;
-            std::vector<typename separator::state> states;
-        };
-        // Moves out.boxes.boundary / states into `certified` (the set certified them: PARTIAL
-        // for occlusion) and `rest`, keeping their order.
-        const auto sort_out = [&](boundary_list& certified, boundary_list& rest) {
-            for (std::size_t i = 0; i < states.size(); ++i) {
-                boundary_list& to = states[i].certified ? certified : rest;
-                to.boxes.push_back(std::move(out.boxes.boundary[i]));
-                to.states.push_back(std::move(states[i]));
-            }
-            out.boxes.boundary.clear(), states.clear();
-        };
-        const auto append = [&](boundary_list& from) {
-            for (std::size_t i = 0; i < from.boxes.size(); ++i)
-                out.boxes.boundary.push_back(std::move(from.boxes[i])), states.push_back(std::move(from.states[i]));
-            from = {};
-        };
-        boundary_list later, refined;  // refined: BOUNDARY boxes of the passes that ran
-        {
-            boundary_list first;
-            sort_out(later, first);
-            append(first);
-        }
-        for (int pass = 0; pass < 2; ++pass) {
-            if (pass == 1) {
-                // Reached only when pass 0 completed or had nothing to refine (the end of the
-                // loop breaks otherwise). The first pass's occlusion-only boxes join the
-                // second; its set-undecided ones are at the refinement's width already.
-                sort_out(later, refined);
-                append(later);
-            }
-            if (out.boxes.boundary.empty()) continue;
-            again.max_boxes = options.max_boxes > st.boxes ? options.max_boxes - st.boxes : 1;
-            separator fine{&set, Contraction::wrap(detail::set_contractor<Set, position_box<I>>{&set}), &occlusion,
-                           facet_index, Bisector(refine->min_width), fine_stage,
-                           stage.min_piece > 0.0 ? stage.min_piece : position_eps / 10, &out.counters, shadows};
-            paver<position_box<I>, identity, separator, Bisector, largest_volume_first> q(
-                identity{}, std::move(fine), Bisector(refine->min_width), again);
-            auto more = q.run_from(out.boxes.boundary, states, stop);
-            ++out.counters.refinement_passes;
-            const auto now = std::chrono::steady_clock::now();
-            out.refinement_stopped = more.stats.reason == termination::deadline && refine->deadline &&
-                                     now >= *refine->deadline && !(options.deadline && now >= *options.deadline);
-            st.boxes += more.stats.boxes, st.bisections += more.stats.bisections, st.inner_tests += more.stats.inner_tests;
-            st.valid += more.stats.valid, st.valid_volume += more.stats.valid_volume;
-            st.discarded += more.stats.discarded, st.discarded_volume += more.stats.discarded_volume;
-            st.peak_pending = std::max(st.peak_pending, more.stats.peak_pending);
-            if (!out.refinement_stopped) st.reason = more.stats.reason;
-            for (auto& v : more.valid) out.boxes.valid.push_back(std::move(v));
-            out.boxes.boundary = std::move(more.boundary);
-            states = q.boundary_states();
-            if (out.refinement_stopped) {
-                // Not refined yet, but decided as far as the paving at ε_p went: BOUNDARY, for
-                // the reason the set gives.
-                for (auto& b : more.pending) {
-                    out.boxes.boundary.push_back(std::move(b));
-                    states.emplace_back();
-                }
-            } else {
-                out.boxes.pending = std::move(more.pending);
-                st.pending = more.stats.pending, st.pending_volume = more.stats.pending_volume;
-            }
-            if (st.reason != termination::completed || out.refinement_stopped) break;
-        }
-        // What no pass reached (a stopped first pass leaves the second kind as it was), then
-        // what the passes left.
-        append(later);
-        append(refined);
-        st.boundary = out.boxes.boundary.size();
-        st.boundary_volume = 0;
-        for (const auto& b : out.boxes.boundary) st.boundary_volume += detail::paving_volume(b);
-    }
-    // A BOUNDARY box was separated just before the bisector declined it: undecided by the set
-    // (which constraint, if it says: one more test), or certified by it and PARTIAL for occlusion.
-    out.boundary_reasons.reserve(out.boxes.boundary.size());
-    for (std::size_t i = 0; i < out.boxes.boundary.size(); ++i)
-        out.boundary_reasons.push_back(
-            states[i].certified ? boundary_reason::occlusion
-            : states[i].why     ? *states[i].why
-                                : undecided_constraint<I>(set, out.boxes.boundary[i]).value_or(boundary_reason::occlusion));
+                                        const paving_choice& paving = {},
+                                        const std::optional<position_refinement>& refine = {},
+                                        Contraction contraction = {}) {
+    position_stage<I, Set, Occlusion, Contraction, Bisector, Buffer> stage(problem, facet_index, occlusion, paving,
+                                                                           position_eps, parameters,
+                                                                           std::move(contraction));
+    position_stage_result<I> out = stage.pave(options, stop);
+    if (refine) stage.refine(out, *refine, options, stop);
+    stage.explain(out);
     return out;
 }
 

@@ -12,9 +12,13 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "certipose/constraints/concept.hpp"
+#include "certipose/paver/paver.hpp"
 #include "certipose/pose/pose_box.hpp"
 #include "certipose/solver/task.hpp"
 
@@ -64,6 +68,62 @@ struct solve_stats {
     double seconds_position = 0, seconds_orientation = 0, seconds = 0;
     termination reason = termination::completed;
 };
+
+/// One member of solve_stats as the result JSON's "stats" object names it (docs/io.md).
+template <class T>
+struct stats_field {
+    static constexpr bool may_be_required = std::is_same_v<T, std::size_t> || std::is_same_v<T, double>;
+    std::string_view name;
+    T solve_stats::*member;
+    bool required = false;  ///< a result document without it is rejected; else it reads as the default
+};
+template <class T>
+stats_field(std::string_view, T solve_stats::*) -> stats_field<T>;
+template <class T>
+stats_field(std::string_view, T solve_stats::*, bool) -> stats_field<T>;
+
+/// The members of solve_stats in the result JSON, in the order they are written: io/json.hpp
+/// writes and reads the "stats" object from this table alone, so a new field is one line here
+/// (and, for a member of a new type, a case in the writer and the reader). valid, boundary and
+/// seconds are the contract; the others are extra fields. refinement_passes is not written.
+inline constexpr auto solve_stats_fields = std::make_tuple(
+    stats_field{"valid", &solve_stats::valid, true},
+    stats_field{"boundary", &solve_stats::boundary, true},
+    stats_field{"seconds", &solve_stats::seconds, true},
+    stats_field{"position_valid", &solve_stats::position_valid},
+    stats_field{"position_boundary", &solve_stats::position_boundary},
+    stats_field{"contractions", &solve_stats::contractions},
+    stats_field{"bisections", &solve_stats::bisections},
+    stats_field{"occlusion_tests", &solve_stats::occlusion_tests},
+    stats_field{"shadow_walks", &solve_stats::shadow_walks},
+    stats_field{"inner_pieces", &solve_stats::inner_pieces},
+    stats_field{"occlusion_pieces", &solve_stats::occlusion_pieces},
+    stats_field{"corner_boxes", &solve_stats::corner_boxes},
+    stats_field{"position_merges", &solve_stats::position_merges},
+    stats_field{"valid_volume", &solve_stats::valid_volume},
+    stats_field{"boundary_volume", &solve_stats::boundary_volume},
+    stats_field{"refinement_stopped", &solve_stats::refinement_stopped},
+    stats_field{"merges", &solve_stats::merges},
+    stats_field{"grown", &solve_stats::grown},
+    stats_field{"seconds_growth", &solve_stats::seconds_growth},
+    stats_field{"orientation_certifications", &solve_stats::orientation_certifications},
+    stats_field{"orientation_groups", &solve_stats::orientation_groups},
+    stats_field{"orientation_borrowed", &solve_stats::orientation_borrowed},
+    stats_field{"seconds_position", &solve_stats::seconds_position},
+    stats_field{"seconds_orientation", &solve_stats::seconds_orientation},
+    stats_field{"termination", &solve_stats::reason},
+    stats_field{"boundary_reasons", &solve_stats::boundary_reasons},
+    stats_field{"occlusion_checked", &solve_stats::occlusion_checked});
+
+static_assert(std::apply([](const auto&... field) { return ((!field.required || field.may_be_required) && ...); },
+                         solve_stats_fields),
+              "certipose: only counts and numbers can be required stats fields (io/json.hpp reads them so)");
+
+/// Calls f(field) for each stats_field of solve_stats_fields, in order.
+template <class F>
+constexpr void for_each_stats_field(F&& f) {
+    std::apply([&](const auto&... field) { (f(field), ...); }, solve_stats_fields);
+}
 
 /// The reason most BOUNDARY boxes have (ties: the earlier reason); nothing without BOUNDARY boxes.
 inline std::optional<boundary_reason> main_boundary_reason(const solve_stats& s) {

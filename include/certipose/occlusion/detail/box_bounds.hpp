@@ -5,10 +5,10 @@
 // rounding of the interval bounds only makes the box larger, which keeps every answer sound.
 #pragma once
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
-#include <certipose/interval/concept.hpp>
-#include <certipose/pose/pose_box.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
+#include "certipose/interval/concept.hpp"
+#include "certipose/pose/pose_box.hpp"
 
 #include <Eigen/Geometry>
 

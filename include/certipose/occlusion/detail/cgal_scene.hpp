@@ -10,8 +10,8 @@
 // mesh ("part", "occluder 2") and the offending edge or faces.
 #pragma once
 
-#include <certipose/error.hpp>
-#include <certipose/geometry/triangle_mesh.hpp>
+#include "certipose/error.hpp"
+#include "certipose/geometry/triangle_mesh.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>

@@ -13,6 +13,7 @@
 
 #include "certipose/interval/concept.hpp"
 #include "certipose/interval/detail/fenv.hpp"
+#include "certipose/interval/detail/transcendental.hpp"
 #include "certipose/interval/operations.hpp"
 
 namespace certipose::detail::orientation {
@@ -24,48 +25,22 @@ inline constexpr double half_pi_lo = std::numbers::pi / 2;  // exact halving: st
 inline const double half_pi_hi = std::nextafter(std::numbers::pi / 2, 4.0);
 
 /// Bounds of a real function over an interval, as doubles.
-struct bounds {
-    double lo, hi;
-};
+using bounds = certipose::detail::double_bounds;
 
 // Outward widening of a libm result by more than `transcendental_ulps` (2) ulps, cheaper than
-// nextafter: for finite x, ulp(x) ≤ ε|x|, so subtracting 4ε|x| (an exact power-of-two scaling)
-// plus 16 subnormal ulps moves x down by at least 3.5 ulps after the subtraction's own rounding
-// to nearest (the scope every caller holds). Results here are at most a few units in magnitude.
-inline double widen_down(double x) noexcept {
-    static_assert(transcendental_ulps <= 3, "widen_down widens by 3.5 ulps at least");
-    return x - (std::abs(x) * 0x1p-50 + 0x1p-1070);
-}
-inline double widen_up(double x) noexcept { return x + (std::abs(x) * 0x1p-50 + 0x1p-1070); }
+// nextafter (interval/detail/transcendental.hpp); call inside a nearest scope. Results here are
+// at most a few units in magnitude.
+inline double widen_down(double x) noexcept { return scaled_widening::down(x); }
+inline double widen_up(double x) noexcept { return scaled_widening::up(x); }
 
-/// Enclosure of { f(x) : x ∈ [l, u] } for f = sin (phase π/2) or cos (phase 0), whose extrema are
-/// at phase + kπ with value ±1, from the values fl = f(l), fu = f(u) (libm, round-to-nearest).
-/// The same method as interval/detail/transcendental.hpp, but WITHOUT opening a rounding scope:
-/// the caller holds one `round_to_nearest_scope` for a whole batch of evaluations, because
-/// switching the mode costs more than sin and cos together. Endpoint values are widened by
-/// `transcendental_ulps`; an extremum whose abscissa is within a tolerance larger than the error
-/// of phase + k·π is included, so none is missed.
+/// Enclosure of { f(x) : x ∈ [l, u] } for f = sin (phase π/2) or cos (phase 0) from the values
+/// fl = f(l), fu = f(u) (libm, round-to-nearest): the enclosure of interval/detail/
+/// transcendental.hpp in its batched form, which opens no rounding scope (the caller holds one
+/// `round_to_nearest_scope` for a whole batch of evaluations), widens cheaply and answers a point
+/// by its widened value (most calls of certify_fov are points, box centres, and the search for
+/// extrema is most of their cost).
 inline bounds periodic_bounds_from(double l, double u, double fl, double fu, double phase) {
-    constexpr double pi = std::numbers::pi;
-    // Huge arguments: k·π below would stop being exact (and k += 1 stop advancing).
-    constexpr double huge = 1e9;
-    if (!(std::abs(l) < huge && std::abs(u) < huge) || u - l >= 2.0 * pi - 1e-6) return {-1.0, 1.0};
-    double lo = widen_down(std::min(fl, fu)), hi = widen_up(std::max(fl, fu));
-    // A point: the widened libm value encloses it, extremum or not (near ±1 the widening reaches
-    // ±1 already). Most calls of certify_fov are points (box centres), and the loop below is
-    // most of their cost.
-    if (l == u) return {std::max(lo, -1.0), std::min(hi, 1.0)};
-    const double k0 = std::floor((l - phase) / pi) - 1.0;
-    const double k1 = std::ceil((u - phase) / pi) + 1.0;
-    for (double k = k0; k <= k1; k += 1.0) {
-        const double t = phase + k * pi;
-        const double tol = 8.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + pi);
-        if (t + tol < l || t - tol > u) continue;
-        const double value = std::fmod(std::abs(k), 2.0) == 0.0 ? 1.0 : -1.0;
-        lo = std::min(lo, value);
-        hi = std::max(hi, value);
-    }
-    return {std::max(lo, -1.0), std::min(hi, 1.0)};
+    return periodic_bounds_nearest<periodic_batched>(l, u, fl, fu, phase);
 }
 inline bounds cos_bounds_nearest(double l, double u) {
     return periodic_bounds_from(l, u, std::cos(l), l == u ? std::cos(l) : std::cos(u), 0.0);

@@ -126,3 +126,9 @@ private:
 };
 
 }  // namespace certipose::detail
+
+namespace certipose {
+/// The certifier of whole 6D boxes with the solver's proofs (pose_solver::certifier).
+template <class Set, class Occlusion, Interval I>
+using pose_certifier = detail::box_certifier<Set, Occlusion, I>;
+}  // namespace certipose

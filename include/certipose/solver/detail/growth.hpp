@@ -176,14 +176,13 @@ std::optional<pose_box<I>> largest_around(const std::array<double, 6>& c, Certif
 
 /// A position face as the merges look it up: the dimension it is normal to, its coordinate and
 /// the two intervals of the other dimensions. Hashed, not ordered: the merges look up three keys
-/// per box and round, and a std::map's six-way comparisons were a tenth of a plate_holes run.
+/// per box and round, and six-way comparisons in an ordered map cost more than the hash.
 using face_key = std::tuple<std::size_t, double, double, double, double, double>;
 
 struct face_key_hash {
     std::size_t operator()(const face_key& k) const noexcept {
         // The bits of each double (0.0 for −0.0: equal keys hash alike), mixed by multiplication
-        // and a final xor-shift; std::hash<double> hashes the bytes (murmur) and was a third of
-        // the merges' time.
+        // and a final xor-shift; std::hash<double> hashes the bytes (murmur), which is slower.
         std::uint64_t h = std::get<0>(k);
         const auto mix = [&](double x) {
             h = (h ^ std::bit_cast<std::uint64_t>(x == 0.0 ? 0.0 : x)) * 0x9e3779b97f4a7c15ull;
@@ -202,8 +201,7 @@ face_key make_face_key(const position_box<I>& p, std::size_t d, double at) {
 
 /// The boxes of one round of a merge by their lower faces (the first box listed for a face
 /// keeps it). Built, searched and dropped once per round, so its nodes come from one buffer
-/// released at once instead of a heap allocation and a free per face (on plate_holes, facet 7,
-/// the merges went from 5.9 to 5.1 % of the run; what is left is mostly the look-ups).
+/// released at once instead of a heap allocation and a free per face.
 class lower_face_index {
 public:
     /// `position_of(box)` is the position box of an element of `boxes`.

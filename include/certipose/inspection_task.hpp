@@ -1,0 +1,35 @@
+// certipose/inspection_task.hpp — what is asked of a view of one facet, besides the camera: the
+// viewing-angle threshold and an optional resolution requirement (paper §2).
+//
+// Below the constraint sets and the solver: both read it, and neither may include the other.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
+
+namespace certipose {
+
+/// The inspection task for one facet (DESIGN.md §1, §3).
+struct inspection_task {
+    /// θ_v: the sight line to the facet centre must make at least this angle with the facet's
+    /// plane, i.e. the angle to the normal is at most π/2 − θ_v (constraint 4). Radians, [0, π/2).
+    double min_view_angle = 0.35;
+    /// Optional resolution requirement r (metres on the part per pixel): caps d_max at r·f_px.
+    std::optional<double> max_metres_per_pixel{};
+
+    void validate() const {
+        if (!(min_view_angle >= 0.0) || !(min_view_angle < std::numbers::pi / 2))
+            throw invalid_argument("min_view_angle", "inspection_task: min_view_angle must be in [0, pi/2), got " +
+                                                         detail::format_double(min_view_angle));
+        if (max_metres_per_pixel && !(*max_metres_per_pixel > 0.0 && std::isfinite(*max_metres_per_pixel)))
+            throw invalid_argument("max_metres_per_pixel",
+                                   "inspection_task: max_metres_per_pixel must be positive and finite, got " +
+                                       detail::format_double(*max_metres_per_pixel));
+    }
+};
+
+}  // namespace certipose
