@@ -113,8 +113,7 @@ result_document make_result_document(const solve_result<I>& result, const triang
     d.camera.d_max = range.max;
     d.task = {task.min_view_angle, task.max_metres_per_pixel};
     // The paper's paving records carving's steps off (and its tuning at the defaults).
-    const carving* carved = carving_of(options.paving);
-    const carving c = carved ? *carved : carving{.inner_contraction = false, .occlusion_cuts = false, .corner_boxes = false};
+    const carving c = carving_steps(options.paving);
     d.settings = {options.position_eps, options.orientation_eps, c.inner_contraction, c.occlusion_cuts,
                   c.corner_boxes, c.corner_depth, c.rest_min_pieces,
                   options.refine ? std::optional<double>(options.refine->width(options.position_eps)) : std::nullopt,

@@ -27,7 +27,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <cstddef>
 #include <map>
@@ -175,9 +174,8 @@ private:
     bool halted() const {
         return out_.stats.reason == termination::deadline || out_.stats.reason == termination::cancelled;
     }
-    /// Every orientation of `e` is VALID over each of `positions`.
-    template <class Positions>
-    void accept(const Positions& positions, const orientation_result<I>& o);
+    /// Every orientation box of `o` is VALID over position box `p`.
+    void accept(const position_box<I>& p, const orientation_result<I>& o);
     orientation_result<I> orient(const position_box<I>& p, bool single);
     orientation_result<I> borrow(const position_box<I>& p, const cell_key& key);
 
@@ -198,16 +196,13 @@ private:
 
 template <class Schedule, class Orientation, CameraModel Camera, Interval I, class Bisector>
     requires OrientationScheduleFor<Schedule, Orientation, I, Camera>
-template <class Positions>
-void orientation_stage<Schedule, Orientation, Camera, I, Bisector>::accept(const Positions& positions,
+void orientation_stage<Schedule, Orientation, Camera, I, Bisector>::accept(const position_box<I>& p,
                                                                            const orientation_result<I>& o) {
-    for (const position_box<I>& p : positions) {
-        for (const auto& e : o.boxes) {
-            out_.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{p, e}});
-            ++out_.stats.valid;
-        }
-        out_.stats.valid_volume += volume(p);
+    for (const auto& e : o.boxes) {
+        out_.boxes.push_back(classified_box<I>{box_class::valid, pose_box<I>{p, e}});
+        ++out_.stats.valid;
     }
+    out_.stats.valid_volume += volume(p);
 }
 
 template <class Schedule, class Orientation, CameraModel Camera, Interval I, class Bisector>
@@ -291,9 +286,7 @@ void orientation_stage<Schedule, Orientation, Camera, I, Bisector>::orient_group
         out_.stats.orientation_certifications += o.certifications;
         if (!o.boxes.empty()) {
             ++out_.stats.orientation_groups;
-            std::vector<std::reference_wrapper<const position_box<I>>> positions;
-            for (std::size_t i : members) positions.emplace_back(valid[i]);
-            accept(positions, o);
+            for (std::size_t i : members) accept(valid[i], o);
             return;
         }
         if (members.size() < 2 * tuning_.min_group) return one_by_one(members);
@@ -342,7 +335,7 @@ void orientation_stage<Schedule, Orientation, Camera, I, Bisector>::orient_each(
         const orientation_result<I> o = orient(p, true);
         st.orientation_certifications += o.certifications;
         if (!o.boxes.empty()) {
-            accept(std::array{std::cref(p)}, o);
+            accept(p, o);
             continue;
         }
         if (st.reason != termination::completed) {  // a budget forbids bisecting further

@@ -74,4 +74,11 @@ using paving_choice = std::variant<carving, paper_paving>;
 /// The carving of a choice, or nothing for the paper's paving.
 inline const carving* carving_of(const paving_choice& p) noexcept { return std::get_if<carving>(&p); }
 
+/// The steps a choice takes, as a carving: the paper's paving is carving with every step off
+/// (its tuning at the defaults, which no step reads then).
+inline carving carving_steps(const paving_choice& p) noexcept {
+    if (const carving* c = carving_of(p)) return *c;
+    return carving{.inner_contraction = false, .occlusion_cuts = false, .corner_boxes = false};
+}
+
 }  // namespace certipose

@@ -57,29 +57,15 @@ namespace detail {
 /// What the separator does with a partly valid box: the paving choice, made concrete for one
 /// run (the minimal piece in metres), plus what refinement changes.
 struct separator_rules {
-    bool inner_contraction = false;
-    bool occlusion_cuts = false;
-    bool corner_boxes = false;
-    std::size_t corner_depth = 1;
-    double rest_min_pieces = 0;
+    carving steps{};       ///< which steps run, and their tuning (all off: the paper's paving)
     double min_piece = 0;  ///< metres
     /// Look for OCCLUDED proofs on the boxes the bisector splits (the paper's paving; off with
     /// occlusion cuts, and in refinement, where they rarely succeed).
     bool occluded_proofs = true;
 
     static separator_rules from(const paving_choice& paving, double position_eps) {
-        separator_rules r;
-        r.min_piece = position_eps / 10;
-        if (const carving* c = carving_of(paving)) {
-            r.inner_contraction = c->inner_contraction;
-            r.occlusion_cuts = c->occlusion_cuts;
-            r.corner_boxes = c->corner_boxes;
-            r.corner_depth = c->corner_depth;
-            r.rest_min_pieces = c->rest_min_pieces;
-            r.min_piece = c->min_piece(position_eps);
-        }
-        r.occluded_proofs = !r.occlusion_cuts;
-        return r;
+        const carving steps = carving_steps(paving);
+        return separator_rules{steps, steps.min_piece(position_eps), !steps.occlusion_cuts};
     }
 };
 }  // namespace detail
@@ -132,7 +118,7 @@ struct position_separator {
     struct state {
         bool certified = false;  ///< the constraint set holds on the whole box
         /// How many corner boxes were split off the leaf this box is left of (0: none). A rest
-        /// box is not split; below options.corner_depth it may give a corner box of its own.
+        /// box is not split; below options.steps.corner_depth it may give a corner box of its own.
         std::uint8_t rest = 0;
         /// For a box left undecided by the set where the bisector stops: the constraint that
         /// stayed undecided (the BOUNDARY box's reason), found by the same evaluation as the test.
@@ -164,7 +150,7 @@ struct position_separator {
             if (v == verdict::undecided) {
                 bool certified = false;
                 if constexpr (ComplementContractingSet<Set, I>) {
-                    if (options.inner_contraction && s.rest == 0) {
+                    if (options.steps.inner_contraction && s.rest == 0) {
                         box failing = b;
                         set->contract_complement(failing);
                         if (is_empty(failing)) {
@@ -180,7 +166,7 @@ struct position_separator {
                             // box of their own: a piece is often much thinner than the whole, and
                             // most pieces' own walks after a failed one give up too).
                             if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
-                                if (!pieces.empty() && options.occlusion_cuts && walker.may_walk(whole, s.seen)) {
+                                if (!pieces.empty() && options.steps.occlusion_cuts && walker.may_walk(whole, s.seen)) {
                                     bool covered = false;
                                     box reach = box::empty();
                                     if (!walker.walk(whole, s.seen, false, reach, covered)) s.seen.walk_failed_width = 1.25 * max_width(whole);
@@ -198,7 +184,7 @@ struct position_separator {
                     // Where the bisector stops, the constraint still undecided is the BOUNDARY
                     // box's reason (asked now: the state carries it to the end of the run).
                     if (leaf) s.why = undecided_constraint<I>(*set, b);
-                    if (leaf && options.corner_boxes && s.rest < options.corner_depth &&
+                    if (leaf && options.steps.corner_boxes && s.rest < options.steps.corner_depth &&
                         see(b, s, false) != visibility::occluded && (s.seen.visible || s.seen.shadows))
                         return staircase(b, s, sink, [&](const box& q) {
                             return set->test(q) == verdict::satisfied && (s.seen.visible || walker.outside(s.seen.shadows->list, q));
@@ -214,10 +200,10 @@ struct position_separator {
         if (seen == visibility::occluded) return verdict::violated;
         if (!s.seen.shadows) return verdict::undecided;
         // Occlusion cut: whatever lies outside the hull of the shadows in b sees the facet.
-        if (s.rest >= options.corner_depth) return verdict::undecided;
+        if (s.rest >= options.steps.corner_depth) return verdict::undecided;
         if (!(blocked == b))
             count->occlusion_pieces += carve(b, blocked, options.min_piece, [&](box&& piece) { sink.valid(std::move(piece)); });
-        if (leaf && options.corner_boxes)
+        if (leaf && options.steps.corner_boxes)
             return staircase(b, s, sink, [&](const box& q) { return walker.outside(s.seen.shadows->list, q); }, [] {});
         return verdict::undecided;
     }
@@ -244,7 +230,7 @@ private:
             // One walk of the tree decides VISIBLE (no triangle may block) and finds the
             // shadows for the cuts; the classification's own walk is then needed only to look
             // for an OCCLUDED proof, on a box that one shadow covers whole.
-            if (options.occlusion_cuts && walker.may_walk(b, s.seen)) {
+            if (options.steps.occlusion_cuts && walker.may_walk(b, s.seen)) {
                 bool covered = false;
                 box reach = box::empty();
                 if (walker.walk(b, s.seen, full_effort, reach, covered)) {
@@ -270,7 +256,7 @@ private:
     bool stair_worth(const box& b, const state& s) const {
         if (s.rest == 0) return true;
         for (std::size_t k = 0; k < 3; ++k)
-            if (upper(b[k]) - lower(b[k]) < options.rest_min_pieces * options.min_piece) return false;
+            if (upper(b[k]) - lower(b[k]) < options.steps.rest_min_pieces * options.min_piece) return false;
         return true;
     }
 
@@ -286,7 +272,7 @@ private:
     /// undecided (`undecided` updates the state's reason).
     template <class Certified, class Undecided>
     verdict staircase(box& b, state& s, piece_sink<box, state>& sink, Certified&& certified, Undecided&& undecided) {
-        while (s.rest < options.corner_depth && stair_worth(b, s)) {
+        while (s.rest < options.steps.corner_depth && stair_worth(b, s)) {
             auto inner = corner_box(b, certified, 6);
             if (!inner) break;
             split_off(b, std::move(*inner), s, sink);
@@ -461,7 +447,7 @@ void position_stage<I, Set, Occlusion, Contraction, Bisector, Buffer>::refine(po
     if (refine.deadline && (!again.deadline || *refine.deadline < *again.deadline)) again.deadline = refine.deadline;
     again.record_tree = false;
     detail::separator_rules fine_rules = rules_;
-    fine_rules.corner_depth = 1;
+    fine_rules.steps.corner_depth = 1;
     fine_rules.occluded_proofs = false;
     auto& st = out.boxes.stats;
     // BOUNDARY boxes with their separator states, side by side (run_from takes both).
