@@ -1,5 +1,5 @@
 // The paper's case study (§8) end to end: sample part (2 300 faces), facet of interest next to a
-// protrusion, ε_p = 0.1 m, ε_o = 0.38 rad, the DESIGN.md §6 camera. The paper: 1 614 boxes in
+// protrusion, ε_p = 0.1 m, ε_o = 0.38 rad, the case-study camera. The paper: 1 614 boxes in
 // ~53 s on an i5-6440HQ. Counters report boxes per class, the time of each stage and the
 // certified volume of positions; `_paper_paving` is the paper's paving (no inner contraction,
 // occlusion cuts or corner boxes), `_grown` adds box growth, `_anytime` is refinement and growth

@@ -1,5 +1,9 @@
-// How much of the true inspection space the solver certifies, per mode, on the reference cases
-// of ../shared/cases/README.md (not a Google Benchmark: one table, every mode in the same run).
+// How much of the true inspection space the solver certifies, per mode (not a Google Benchmark:
+// one table, every mode in the same run): on the case study (the bundled sample part's facet of
+// interest, examples/data/camera.json) always, and on the four reference cases of
+// docs/completeness.md#the-reference-cases when the build names their folder
+// (-DCERTIPOSE_REFERENCE_DATA=DIR, holding meshes/*.off and cases/*.json; those meshes are not
+// distributed with certipose).
 //
 // The truth comes from an independent sampler (verify/point_check.hpp, plain doubles and ray
 // casting): positions drawn uniformly in the facet's bounding box grown by d_max that satisfy
@@ -27,6 +31,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -45,6 +50,34 @@ const reference_case cases[] = {{"idler_riser.off", 0.0994878, 102, "camera.json
                                 {"featuretype.off", 0.0694832, 3262, "camera.json"},
                                 {"angle_block.off", 0.186104, 520, "camera_wide.json"},
                                 {"plate_holes.off", 0.00109127, 7, "camera.json"}};
+
+/// A case ready to solve: its name, mesh, camera and task, and facet.
+struct loaded_case {
+    std::string name;
+    certipose::triangle_mesh mesh;
+    certipose::camera_task input;
+    std::size_t facet;
+};
+
+/// The case study, then the reference cases when CERTIPOSE_REFERENCE_DATA names their folder.
+std::vector<loaded_case> load_cases() {
+    std::vector<loaded_case> out;
+    certipose::sample_part part = certipose::make_sample_part();
+    out.push_back({"sample_part.off", std::move(part.mesh),
+                   certipose::read_camera_task(std::string(CERTIPOSE_EXAMPLE_DATA) + "/camera.json"),
+                   part.facet_of_interest});
+    const std::string data = CERTIPOSE_REFERENCE_DATA;
+    if (data.empty()) {
+        std::fprintf(stderr, "bench_completeness: the case study only; for the reference cases configure with "
+                             "-DCERTIPOSE_REFERENCE_DATA=DIR (DIR/meshes/*.off, DIR/cases/*.json; "
+                             "docs/completeness.md#the-reference-cases)\n");
+        return out;
+    }
+    for (const auto& c : cases)
+        out.push_back({c.mesh, certipose::read_mesh(data + "/meshes/" + c.mesh, {.scale = c.scale}),
+                       certipose::read_camera_task(data + "/cases/" + c.camera), c.facet});
+    return out;
+}
 
 using truth = certipose::verify::position_sample;
 
@@ -124,12 +157,11 @@ int main(int argc, char** argv) {
         for (std::string m; std::getline(in, m, ',');) modes.push_back(m);
     }
     const std::size_t every = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 0;
-    const std::string shared = CERTIPOSE_SHARED_MESHES;
-    const std::string cases_dir = shared + "/../cases/";
+    const std::vector<loaded_case> all = load_cases();
     if (every > 0) {
-        for (const auto& c : cases) {
-            const auto mesh = certipose::read_mesh(shared + "/" + c.mesh, {.scale = c.scale});
-            const auto in = certipose::read_camera_task(cases_dir + c.camera);
+        for (const auto& c : all) {
+            const auto& mesh = c.mesh;
+            const auto& in = c.input;
             const solver_t solver(mesh, in.calibrated(), in.task);
             for (const auto& mode : modes) {
                 double seconds = 0, volume = 0;
@@ -140,7 +172,7 @@ int main(int argc, char** argv) {
                     valid += r.stats.valid, boundary += r.stats.boundary;
                 }
                 std::printf("%s, every %zuth facet (%zu), %s: %.3f s, %zu VALID / %zu BOUNDARY, valid volume %.5f m³\n",
-                            c.mesh, every, facets, mode.c_str(), seconds, valid, boundary, volume);
+                            c.name.c_str(), every, facets, mode.c_str(), seconds, valid, boundary, volume);
                 std::fflush(stdout);
             }
         }
@@ -148,9 +180,9 @@ int main(int argc, char** argv) {
     }
     std::printf("| case | mode | VALID / BOUNDARY | certified share | s per facet | median tol (p10, p90) m | median φ / γ / β width rad | valid volume m³ |\n");
     std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
-    for (const auto& c : cases) {
-        const auto mesh = certipose::read_mesh(shared + "/" + c.mesh, {.scale = c.scale});
-        const auto in = certipose::read_camera_task(cases_dir + c.camera);
+    for (const auto& c : all) {
+        const auto& mesh = c.mesh;
+        const auto& in = c.input;
         const auto camera = in.calibrated();
         const solver_t solver(mesh, camera, in.task);
         const truth t = certipose::verify::sample_valid_positions(mesh, c.facet, solver.range().min, solver.range().max,
@@ -163,7 +195,7 @@ int main(int argc, char** argv) {
             r.stats.seconds = fastest;
             const figures f = measure(r, t);
             std::printf("| %s (%zu) | %s | %zu / %zu | %.1f %% of %zu | %.3f | %.4f (%.4f, %.4f) | %.3f / %.3f / %.3f | %.4g |\n",
-                        c.mesh, c.facet, mode.c_str(), f.valid, f.boundary,
+                        c.name.c_str(), c.facet, mode.c_str(), f.valid, f.boundary,
                         t.valid.empty() ? 0.0 : 100.0 * static_cast<double>(f.inside) / static_cast<double>(t.valid.size()),
                         t.valid.size(), f.seconds, quantile(f.tol, 0.5), quantile(f.tol, 0.1), quantile(f.tol, 0.9),
                         quantile(f.phi, 0.5), quantile(f.gamma, 0.5), quantile(f.beta, 0.5), f.valid_volume);

@@ -1,5 +1,5 @@
 // Coverage (docs/coverage.md): the certified facet set C(B) of one pose box on the 2 300-face
-// sample part (one thread, aabb occlusion, the DESIGN.md §6 camera), and the greedy choice over
+// sample part (one thread, aabb occlusion, the case-study camera), and the greedy choice over
 // the candidates. Candidates: the largest VALID box of every 25th facet at ε_p = 0.1 m, ε_o =
 // 0.38 rad (92 solves, done once before timing), whole (Arg 0) or cut to ±5 mm, ±0.02 rad around
 // its centre (Arg 1, certipose-plan's default). The whole plan is timed with certipose-plan.

@@ -2,7 +2,7 @@
 // on the two paths it takes — the centred form (narrow roll) and the roll-free cone (β over the
 // whole circle) — and the orientation work per certified position box for the default policy
 // (`paper_orientation`) and the paving policy. A 3 cm facet 0.5–0.55 m from a 5 cm position
-// box, the DESIGN.md §6 camera, ε_o = 0.38 rad; boost_interval. Counters: certify_fov calls
+// box, the case-study camera, ε_o = 0.38 rad; boost_interval. Counters: certify_fov calls
 // per position box, and the certified widths of φ, γ, β.
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
 // Whole parts (docs/part.md): every 25th facet of the sample part (92 facets) with part_solver at
-// the paper's settings (ε_p = 0.1 m, ε_o = 0.38 rad, the DESIGN.md §6 camera, aabb occlusion),
+// the paper's settings (ε_p = 0.1 m, ε_o = 0.38 rad, the case-study camera, aabb occlusion),
 // on 1 and 2 threads, into a sink that only counts. Counters: facets per second and VALID boxes.
 // The whole part and the 20 000-face part are timed with certipose-part (docs/part.md, "Speed").
 #include <benchmark/benchmark.h>

@@ -1,10 +1,15 @@
-// certipose-part — certified camera pose boxes for every facet of a part (DESIGN.md §6,
-// "Whole-part output"), in parallel.
+// certipose-part — certified camera pose boxes for every facet of a part (docs/part.md),
+// in parallel.
 //
 //   certipose-part --mesh PART --camera CAMERA.json --position-eps E --orientation-eps O --out DIR
 //                  [--threads N] [--facets 0,5,17-30] [--boundary] [--scale S]
 //                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
-//                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N] [--quiet]
+//                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N]
+//                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]... [--quiet]
+//
+// --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
+// restricted to the --keep-in / --keep-out camera regions before they are written
+// (part_options::regions); summary.json records both ("occluders", "keep_in", "keep_out").
 //
 // Built as certipose-part-mpi (CERTIPOSE_WITH_MPI), the same program runs under mpirun: facets
 // are balanced over the ranks (part/mpi.hpp), each rank uses --threads threads, and rank 0 writes
@@ -17,6 +22,7 @@
 // "certipose-part: ..." on stderr: exit 1 for bad input files, solver or write errors, 2 for a
 // bad command line. A progress line (facets, rate, ETA) goes to stderr when it is a terminal.
 #include "program_support.hpp"
+#include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
@@ -57,12 +63,13 @@ struct arguments {
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
     std::optional<double> facet_time_limit, time_limit, corner_rest;
+    scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
 /// The parsed command line, or the exit code (0 after --help, 2 after a usage error).
 std::optional<arguments> parse(int argc, char** argv, int& code) {
     CLI::App app{"certipose-part: certified camera pose boxes for every facet of a part, in parallel. Writes "
-                 "DIR/summary.json and DIR/boxes.jsonl (DESIGN.md section 6).",
+                 "DIR/summary.json and DIR/boxes.jsonl (docs/part.md).",
                  "certipose-part"};
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
         facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb";
@@ -90,6 +97,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "(eps/10; default 3, 2 certifies more, slower)")->type_name("PIECES");
     app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
+    scene_options_text scene;
+    add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
     if (!parse_command_line(app, argc, argv, "certipose-part", code, this_rank == 0)) return std::nullopt;
     try {
@@ -113,6 +122,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!corner_depth.empty()) a.corner_depth = parse_corner_depth(corner_depth);
         if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
+        a.scene = parse_scene_options(scene);
         if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
         std::error_code ec;
         if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec))
@@ -150,12 +160,14 @@ struct null_sink {
 /// Runs the part and writes the folder; returns the exit code.
 template <class Occlusion>
 int run(const arguments& args, const certipose::triangle_mesh& mesh, const certipose::camera_task& input,
-        const interruption& signals, process proc) {
+        const scene& extra, const interruption& signals, process proc) {
     using I = certipose::boost_interval;
     stage_line stage("certipose-part", args.quiet || proc.rank != 0);
     if constexpr (!std::is_same_v<Occlusion, certipose::no_occlusion>)
         stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
-    const part_solver_for<Occlusion> part(mesh, input.calibrated(), input.task);
+    const auto part = naming_occluders(args.scene, [&] {
+        return part_solver_for<Occlusion>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+    });
     stage.done();
 
     certipose::part_options opt;
@@ -171,6 +183,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.max_boxes = args.max_boxes;
     opt.threads = args.threads;
     opt.keep_boundary = args.boundary;
+    opt.regions = args.scene.regions;  // each facet's VALID boxes, before they are written
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
     opt.stop = signals.token();
     const bool progress = proc.rank == 0 && show_progress(args.quiet);
@@ -204,6 +217,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     certipose::part_summary s;
     s.mesh = {args.mesh.string(), mesh.num_faces(), args.scale, certipose::mesh_digest(mesh)};
     certipose::describe_camera(s, part.solver().camera(), input.task);
+    s.camera.mount_offset = input.mount_offset;
     s.settings.position_eps = args.position_eps;
     s.settings.orientation_eps = args.orientation_eps;
     s.settings.max_boxes_per_facet = opt.facet.max_boxes;
@@ -212,6 +226,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     s.settings.boundary = args.boundary;
     s.settings.occlusion = args.occlusion;
     s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
+    s.scene = extra.record;
     s.facets = r.facets;
     s.totals = {r.seconds, r.threads, static_cast<std::size_t>(proc.ranks), r.facets_selected, r.facets.size(), r.valid,
                 r.boundary, r.skipped, r.reason, signals.interrupted()};
@@ -229,6 +244,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
                         signals.interrupted() ? interruption::name(signals.signal()) : certipose::to_string(r.reason));
         if (!certipose::checks_occlusion<Occlusion>)
             std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint but occlusion\n");
+        if (const std::string text = scene_text(args.scene); !text.empty()) std::printf("  scene: %s\n", text.c_str());
         std::printf("wrote %s and %s\n", (args.out / "summary.json").string().c_str(), (args.out / "boxes.jsonl").string().c_str());
     }
     return signals.interrupted() ? signals.exit_code() : exit_ok;
@@ -267,18 +283,20 @@ int main(int argc, char** argv) {
     const auto args = parse(argc, argv, code);
     if (!args) return code;
     try {
+        std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}};
+        add_occluder_inputs(inputs, args->scene);
         certipose::refuse_overwriting_inputs(
-            {{"--mesh", args->mesh}, {"--camera", args->camera}},
-            {{"--out", args->out}, {"--out", args->out / "summary.json"}, {"--out", args->out / "boxes.jsonl"}});
+            inputs, {{"--out", args->out}, {"--out", args->out / "summary.json"}, {"--out", args->out / "boxes.jsonl"}});
         const interruption signals;
         stage_line stage("certipose-part", args->quiet || proc.rank != 0);
         stage.show("reading " + args->mesh.string());
         const certipose::triangle_mesh mesh = certipose::read_mesh(args->mesh, {.scale = args->scale});
+        const scene extra = read_scene(args->scene, &stage);
         stage.done();
         const certipose::camera_task input = certipose::read_camera_task(args->camera);
-        if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, signals, proc);
-        if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, signals, proc);
-        return run<certipose::aabb_occlusion>(*args, mesh, input, signals, proc);
+        if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, extra, signals, proc);
+        if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, extra, signals, proc);
+        return run<certipose::aabb_occlusion>(*args, mesh, input, extra, signals, proc);
     } catch (const certipose::error& e) {
         return report(e.what());
     } catch (const std::exception& e) {

@@ -1,11 +1,16 @@
-// certipose-plan — the fewest camera boxes that certify a part (DESIGN.md §6, "Deployment plan").
+// certipose-plan — the fewest camera boxes that certify a part (docs/coverage.md).
 //
 //   certipose-plan --mesh PART --camera CAMERA.json [--scale S]
 //                  (--part-results DIR | --position-eps E --orientation-eps O [--facets LIST])
 //                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
 //                  [--exact SECONDS]
-//                  [--threads N] --out PLAN.json [--ply PLAN.ply] [--quiet]
+//                  [--threads N] [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
+//                  --out PLAN.json [--ply PLAN.ply] [--quiet]
 //
+// --occluder meshes join the part in the occlusion scene (of the one-shot run and of every C(B));
+// candidates are restricted to the --keep-in / --keep-out camera regions (solver/camera_regions.hpp;
+// the one-shot run per facet, a --part-results run's boxes as they are read). A --part-results run
+// must have been made with the same occluders (digests, scales) and regions, compared exactly.
 // Candidates are the largest VALID boxes of each facet (coverage/candidates.hpp), read from a
 // certipose-part folder or from a whole-part run made here first (one-shot mode), cut down to the
 // installation tolerance around their centres (--tolerance, default ±5 mm, ±0.02 rad). For each the
@@ -17,6 +22,7 @@
 // file and exit 130/143. Errors: one line "certipose-plan: ..." on stderr, exit 1 (bad input,
 // write error) or 2 (bad command line).
 #include "program_support.hpp"
+#include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/coverage/candidates.hpp>
@@ -32,6 +38,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <chrono>
@@ -43,6 +50,8 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -61,10 +70,11 @@ struct arguments {
     std::size_t per_facet = 1, threads = 0;
     std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
     bool quiet = false;
+    scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
 std::optional<arguments> parse(int argc, char** argv, int& code) {
-    CLI::App app{"certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (DESIGN.md section 6).",
+    CLI::App app{"certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (docs/coverage.md).",
                  "certipose-plan"};
     std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
         exact, threads, facets, tolerance;
@@ -87,6 +97,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
     app.add_option("--out", out, "the plan")->type_name("PLAN.json")->required();
     app.add_option("--ply", ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
+    scene_options_text scene;
+    add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
     if (!parse_command_line(app, argc, argv, "certipose-plan", code)) return std::nullopt;
     try {
@@ -119,6 +131,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         }
         if (!exact.empty()) a.exact = parse_double("--exact", exact, "a positive finite number of seconds");
         if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
+        a.scene = parse_scene_options(scene);
         check_output("--out", a.out);
         if (!a.ply.empty()) check_output("--ply", a.ply);
         return a;
@@ -137,6 +150,53 @@ double since(std::chrono::steady_clock::time_point t) {
 /// exactly where its box edges sit. summary.json round-trips every double (shortest digits written,
 /// read back in round-to-nearest), so a run of this camera always compares equal.
 bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+/// The run's occluders and camera regions must be the plan's: a box certified without an occluder
+/// may be hidden by it, and one restricted to other regions may stand where the plan forbids.
+/// Occluders are compared by digest and scale (bit for bit), regions exactly, each list in any order.
+void check_scene(const certipose::scene_record& run, const certipose::scene_record& here, const std::string& where) {
+    const auto mismatch = [&](const std::string& what, const std::string& theirs, const std::string& ours) {
+        throw certipose::invalid_argument(what, where + ": the run's " + what + " (" + theirs + ") is not this plan's (" + ours +
+                                                    "): plan with the --occluder, --keep-in and --keep-out the run used");
+    };
+    using occluder = certipose::occluder_record;
+    const auto occluder_key = [](const occluder& o) { return std::pair(o.digest, std::bit_cast<std::uint64_t>(o.scale)); };
+    const auto occluders = [&](std::vector<occluder> list) {
+        std::sort(list.begin(), list.end(), [&](const occluder& a, const occluder& b) { return occluder_key(a) < occluder_key(b); });
+        return list;
+    };
+    const auto occluders_text = [](const std::vector<occluder>& list) {
+        std::string s;
+        for (const auto& o : list)
+            s += (s.empty() ? "" : ", ") + o.path + ":" + certipose::detail::format_double(o.scale) + " digest " + o.digest;
+        return s.empty() ? std::string("none") : s;
+    };
+    const auto a = occluders(run.occluders), b = occluders(here.occluders);
+    if (!std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [&](const occluder& x, const occluder& y) { return occluder_key(x) == occluder_key(y); }))
+        mismatch("occluders", occluders_text(run.occluders), occluders_text(here.occluders));
+    const auto region_key = [](const certipose::camera_region& r) {
+        std::array<std::uint64_t, 7> k{static_cast<std::uint64_t>(r.shape)};
+        for (std::size_t i = 0; i < 6; ++i) k[i + 1] = std::bit_cast<std::uint64_t>(r.values[i]);
+        return k;
+    };
+    const auto regions = [&](std::vector<certipose::camera_region> list) {
+        std::sort(list.begin(), list.end(), [&](const auto& x, const auto& y) { return region_key(x) < region_key(y); });
+        return list;
+    };
+    const auto regions_text = [](const std::vector<certipose::camera_region>& list) {
+        std::string s;
+        for (const auto& r : list) s += (s.empty() ? "" : " ") + certipose::to_string(r);
+        return s.empty() ? std::string("none") : s;
+    };
+    for (const auto& [key, theirs, ours] : {std::tuple{"keep_in", &run.regions.keep_in, &here.regions.keep_in},
+                                            std::tuple{"keep_out", &run.regions.keep_out, &here.regions.keep_out}}) {
+        const auto x = regions(*theirs), y = regions(*ours);
+        if (!std::equal(x.begin(), x.end(), y.begin(), y.end(),
+                        [&](const auto& p, const auto& q) { return region_key(p) == region_key(q); }))
+            mismatch(key, regions_text(*theirs), regions_text(*ours));
+    }
+}
 
 /// The run in DIR must be of this mesh, camera and task, with occlusion checked: otherwise its
 /// boxes certify something else.
@@ -161,11 +221,18 @@ void check_run(const certipose::part_summary& run, const certipose::part_summary
             if (!same(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
     if (!same(a.d_min, b.d_min) || !same(a.d_max, b.d_max))
         mismatch("camera distance range", text(a.d_min) + ".." + text(a.d_max), text(b.d_min) + ".." + text(b.d_max));
+    // The mount offset changes no box (they are of the projection centre), but the plan's mount
+    // poses are computed with it: a run of another offset is another camera installation.
+    if (a.mount_offset != b.mount_offset) {
+        const auto point = [&](const std::array<double, 3>& p) { return "[" + text(p[0]) + ", " + text(p[1]) + ", " + text(p[2]) + "]"; };
+        mismatch("camera.mount_offset", point(a.mount_offset), point(b.mount_offset));
+    }
     if (!same(run.task.min_view_angle, here.task.min_view_angle))
         mismatch("task.min_view_angle", text(run.task.min_view_angle), text(here.task.min_view_angle));
     if (!run.settings.occlusion_checked)
         throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "
                                                                         "its boxes certify no facet: run it with occlusion");
+    check_scene(run.scene, here.scene, where);
 }
 
 int run(const arguments& args, const interruption& signals) {
@@ -173,20 +240,25 @@ int run(const arguments& args, const interruption& signals) {
     stage.show("reading " + args.mesh.string());
     const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
     const certipose::camera_task input = certipose::read_camera_task(args.camera);
+    const scene extra = read_scene(args.scene, &stage);
     stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
-    const certipose::part_solver<policies> part(mesh, input.calibrated(), input.task);
+    const auto part = naming_occluders(args.scene, [&] {
+        return certipose::part_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+    });
     stage.done();
     const auto& solver = part.solver();
     const bool progress = show_progress(args.quiet);
 
     certipose::plan_document doc;
-    doc.mesh = {args.mesh.string(), mesh.num_faces(), args.scale};
+    doc.mesh = {args.mesh.string(), mesh.num_faces(), args.scale, certipose::mesh_digest(mesh)};
     certipose::part_summary here;
     here.mesh = doc.mesh;
-    here.mesh.digest = certipose::mesh_digest(mesh);
     certipose::describe_camera(here, solver.camera(), input.task);
+    here.camera.mount_offset = input.mount_offset;
     doc.camera = here.camera;
     doc.task = here.task;
+    here.scene = extra.record;
+    doc.scene = extra.record;
 
     // 1. Candidates, and what the run found for each facet (for the reasons of the uncovered).
     const auto t0 = std::chrono::steady_clock::now();
@@ -211,7 +283,12 @@ int run(const arguments& args, const interruption& signals) {
                 box.position.x[k] = I(b.box.position[k][0], b.box.position[k][1]);
                 box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
             }
-            pool.add(b.facet, box);
+            if (args.scene.regions.empty()) return pool.add(b.facet, box);
+            // The run had these very regions (check_run), so its boxes are already allowed: cut
+            // anyway, as the one-shot run does, so that no candidate can leave the allowed space.
+            const auto pieces = certipose::split_by_regions(box.position, args.scene.regions,
+                                                            args.scene.regions.width(run.settings.position_eps));
+            for (const auto& p : pieces.allowed) pool.add(b.facet, certipose::pose_box<I>{p, box.orientation});
         });
         stage.done();
     } else {
@@ -220,6 +297,7 @@ int run(const arguments& args, const interruption& signals) {
         opt.facet.orientation_eps = *args.orientation_eps;
         opt.threads = args.threads;
         opt.stop = signals.token();
+        opt.regions = args.scene.regions;  // each facet's VALID boxes, before they become candidates
         if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
         if (progress)
             opt.progress = [](const certipose::part_progress& p) {
@@ -364,6 +442,7 @@ int main(int argc, char** argv) {
     if (!args) return code;
     return report_errors("certipose-plan", [&] {
         std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}};
+        add_occluder_inputs(inputs, args->scene);
         if (!args->part_results.empty()) {
             inputs.push_back({"--part-results", args->part_results / "summary.json"});
             inputs.push_back({"--part-results", args->part_results / "boxes.jsonl"});

@@ -1,13 +1,16 @@
-// certipose-solve — certified camera pose boxes for one facet of a part (DESIGN.md §6).
+// certipose-solve — certified camera pose boxes for one facet of a part (docs/io.md).
 //
 //   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
 //                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
 //                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
-//                   [--time-limit SECONDS] [--quiet]
+//                   [--time-limit SECONDS] [--occluder MESH[:SCALE]]... [--keep-in REGION]...
+//                   [--keep-out REGION]... [--quiet]
 //
-// Reads the mesh and the camera/task JSON, solves, writes the result JSON (and the PLY): both
-// committed together or neither (io/output_files.hpp), never over an input. SIGINT/SIGTERM stop
-// the solve through its cancellation; nothing is written and the exit code is 130/143. Every
+// Reads the mesh, the --occluder meshes (added to the occlusion scene) and the camera/task JSON,
+// solves, restricts the VALID boxes to the --keep-in / --keep-out camera regions
+// (solver/camera_regions.hpp), writes the result JSON (and the PLY): both committed together or
+// neither (io/output_files.hpp), never over an input. SIGINT/SIGTERM stop the solve through its
+// cancellation; nothing is written and the exit code is 130/143. Every
 // error prints one line "certipose-solve: ..." on stderr; exit codes: 0 success, 1 bad input
 // file / solver / write error, 2 bad command line (docs/errors.md).
 //
@@ -18,6 +21,7 @@
 // Progress goes to stderr when it is a terminal; when a facet gets no VALID box one hint line
 // says what stayed undecided and what to try.
 #include "certipose_solve_cli.hpp"
+#include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
@@ -51,17 +55,19 @@ std::function<bool(const certipose::solve_progress&)> progress_printer(bool quie
 template <class Occlusion>
 certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                       const certipose::inspection_task& task, std::size_t facet,
-                                      const certipose::solve_options& options) {
+                                      const certipose::solve_options& options, const certipose_program::scene& scene,
+                                      const certipose_program::scene_arguments& scene_args) {
     // With aabb: exactly the pipeline certipose::precompiled instantiates.
     using calibrated = certipose::with_camera<certipose::calibrated_camera>;
     using solver = certipose::pose_solver<std::conditional_t<std::is_same_v<Occlusion, certipose::aabb_occlusion>, calibrated,
                                                              certipose::with_occlusion<Occlusion, calibrated>>>;
-    return solver(mesh, camera, task).solve(facet, options);
+    const auto built = [&] { return solver(mesh, camera, task, {.occluders = scene.occluders}); };
+    return certipose_program::naming_occluders(scene_args, built).solve(facet, options);
 }
 
 certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                  const certipose::inspection_task& task, const certipose_solve::arguments& args,
-                                 certipose::solve_options options) {
+                                 certipose::solve_options options, const certipose_program::scene& scene) {
     options.progress = progress_printer(args.quiet);
     // Building the solver checks that the part is a closed solid (the occlusion policies need
     // one): seconds for a large mesh, so say so on a terminal.
@@ -70,13 +76,13 @@ certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const cer
     certipose::solve_result<I> r;
     switch (args.occlusion) {
         case certipose_solve::occlusion_mode::aabb:
-            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options);
+            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
             break;
         case certipose_solve::occlusion_mode::boolean:
-            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options);
+            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
             break;
         case certipose_solve::occlusion_mode::none:
-            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options);
+            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
             break;
     }
     if (options.progress) std::fputc('\n', stderr);
@@ -103,6 +109,9 @@ std::string advice(certipose::boundary_reason why, const certipose_solve::argume
             return "no orientation keeps the facet in the image from any certified position box; " + smaller_eps +
                    " or --orientation-eps, or a wider lens";
         case boundary_reason::budget: return "the budget ended the run first; raise --max-boxes or --time-limit";
+        case boundary_reason::camera_region:
+            return "every VALID box left straddles a --keep-in or --keep-out surface; " + smaller_eps +
+                   " for finer pieces, or check the regions";
     }
     return smaller_eps;
 }
@@ -143,6 +152,7 @@ int main(int argc, char** argv) {
         certipose_program::stage_line stage("certipose-solve", args.quiet);
         stage.show("reading " + args.mesh.string());
         const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+        const certipose_program::scene scene = certipose_program::read_scene(args.scene, &stage);
         stage.done();
         (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
         const certipose::camera_task input = certipose::read_camera_task(args.camera);
@@ -167,12 +177,14 @@ int main(int argc, char** argv) {
         if (!args.quiet) warn_if_tiny(args, camera, mesh, options);
 
         options.stop = signals.token();
-        const auto result = solve(mesh, camera, input.task, args, options);
+        auto result = solve(mesh, camera, input.task, args, options, scene);
+        // Camera regions: the VALID boxes restricted to where a camera may stand, before writing.
+        certipose::restrict_to_regions(result, args.scene.regions, options.position_eps);
         const auto interrupted = [&] { return certipose_program::report_interrupted("certipose-solve", signals); };
         if (signals.interrupted()) return interrupted();
 
-        const certipose::result_document document =
-            certipose::make_result_document(result, mesh, input.camera, input.task, options);
+        certipose::result_document document = certipose::make_result_document(result, mesh, input, options);
+        document.scene = scene.record;  // "occluders", "keep_in", "keep_out"
         nlohmann::ordered_json json = certipose::result_to_json(document);
         json["settings"]["occlusion"] = certipose_solve::to_string(args.occlusion);  // extra field
         // Both files or neither: each is staged complete before either is renamed into place,
@@ -210,6 +222,10 @@ int main(int argc, char** argv) {
             if (!st.occlusion_checked)
                 std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint "
                             "but occlusion\n");
+            if (const std::string extra = certipose_program::scene_text(args.scene); !extra.empty())
+                std::printf("  scene               %s; camera regions dropped %zu VALID pieces, left %zu undecided "
+                            "(boundary camera_region)\n",
+                            extra.c_str(), st.region_dropped, result.boundary_because(certipose::boundary_reason::camera_region));
             std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply ? " and " : "",
                         args.ply ? args.ply->string().c_str() : "");
             if (st.valid == 0) {

@@ -4,7 +4,8 @@
 //   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
 //                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
 //                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
-//                   [--time-limit SECONDS] [--quiet]
+//                   [--time-limit SECONDS] [--occluder MESH[:SCALE]]... [--keep-in REGION]...
+//                   [--keep-out REGION]... [--quiet]
 // `parse_arguments` turns argv into `arguments` or into an exit code. Every mistake — unknown
 // or missing option, malformed number, non-positive threshold, missing input file, output
 // directory that does not exist — prints ONE line "certipose-solve: error: ..." on `err` and
@@ -52,7 +53,7 @@ inline const char* to_string(occlusion_mode m) noexcept {
 struct arguments {
     std::filesystem::path mesh;    ///< --mesh: OFF, OBJ, PLY or STL
     std::size_t facet = 0;         ///< --facet: face index in file order
-    std::filesystem::path camera;  ///< --camera: camera/task JSON (DESIGN.md §6)
+    std::filesystem::path camera;  ///< --camera: camera/task JSON (docs/io.md)
     double position_eps = 0.1;     ///< --position-eps, metres
     double orientation_eps = 0.38; ///< --orientation-eps, radians
     std::filesystem::path out;     ///< --out: result JSON
@@ -67,6 +68,8 @@ struct arguments {
     std::optional<double> refine_seconds;               ///< --refine: anytime refinement budget
     bool grow = false;             ///< --grow: widen the VALID boxes
     bool quiet = false;            ///< --quiet: no summary, no progress
+    /// --occluder, --keep-in, --keep-out (program_support.hpp)
+    certipose_program::scene_arguments scene{};
 };
 
 /// `args` set: run with them. Unset: exit with `exit_code` (0 after --help).
@@ -91,7 +94,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                                      std::ostream& err) {
     CLI::App app{"certipose-solve: certified camera pose boxes from which a facet of a part can "
                  "be inspected (paper: Parrott, Pickard, Dubay 2023). Writes the result JSON of "
-                 "DESIGN.md section 6 and optionally a PLY of the boxes.",
+                 "docs/io.md and optionally a PLY of the boxes.",
                  "certipose-solve"};
     std::string mesh, camera, output, ply, facet, position_eps, orientation_eps, scale,
         max_boxes, time_limit, refine, corner_depth, corner_rest, occlusion = "aabb";
@@ -141,6 +144,8 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
                    "keep refining below position-eps, largest undecided box first, for SECONDS")
         ->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
+    certipose_program::scene_options_text scene;
+    certipose_program::add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
 
     const auto fail = [&](const std::string& message) {
@@ -177,9 +182,12 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
             detail::check_output("--ply", *a.ply);
             outputs.push_back({"--ply", *a.ply});
         }
+        a.scene = certipose_program::parse_scene_options(scene);
+        std::vector<certipose::named_path> inputs{{"--mesh", a.mesh}, {"--camera", a.camera}};
+        for (const auto& o : a.scene.occluders) inputs.push_back({"--occluder", o.path});
         // `--out part.off`, `--out ./camera.json`, `--ply` onto `--out`: refused, nothing run.
         try {
-            certipose::refuse_overwriting_inputs({{"--mesh", a.mesh}, {"--camera", a.camera}}, outputs);
+            certipose::refuse_overwriting_inputs(inputs, outputs);
         } catch (const certipose::invalid_argument& e) {
             throw detail::usage_error(e.what());
         }

@@ -4,13 +4,22 @@
 // exact pose, also the largest box around it that keeps every facet of C certified.
 //
 //   certipose-verify --mesh PART --camera CAMERA.json --poses POSES.json [--scale S]
-//                    [--out REPORT.json] [--no-tolerance] [--quiet]
+//                    [--out REPORT.json] [--no-tolerance] [--occluder MESH[:SCALE]]...
+//                    [--keep-in REGION]... [--keep-out REGION]... [--quiet]
 //
+// --occluder meshes join the part in the occlusion scene. With --keep-in / --keep-out
+// (solver/camera_regions.hpp) every pose is first placed against the camera regions
+// ("camera_region" in the report): "forbidden" (no position of it allowed) certifies and makes
+// possible nothing; "undecided" (partly outside, or too close to a sphere's surface to tell)
+// certifies nothing ("possible" is still given); "allowed" is inspected as usual, and an exact
+// pose's tolerance box is shrunk about the pose until its positions are all allowed.
 // POSES.json: {"poses": [[x,y,z,φ,γ,β], {"position": [[xl,xu],...], "orientation": [[φl,φu],...]},
-// ...]} or a PLAN.json (io/plan_files.hpp). One line per pose on stdout; REPORT.json (written
+// {"position": [x,y,z], "quaternion": [qx,qy,qz,qw]}, {"matrix": 4x4 camera-to-world}, ...]} or a
+// PLAN.json (io/plan_files.hpp; a quaternion or matrix becomes a ±1e-8 rad box around its ZXZ angles). One line per pose on stdout; REPORT.json (written
 // atomically) holds the sets. Errors: one line "certipose-verify: ..." on stderr, exit 1 (bad
 // input, write error) or 2 (bad command line); SIGINT/SIGTERM exit 130/143 and write nothing.
 #include "program_support.hpp"
+#include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/coverage/inspection.hpp>
@@ -20,6 +29,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -39,6 +50,7 @@ struct arguments {
     fs::path mesh, camera, poses, out;
     double scale = 1.0;
     bool tolerance = true, quiet = false;
+    scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
 std::optional<arguments> parse(int argc, char** argv, int& code) {
@@ -51,6 +63,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--scale", scale, "multiply mesh coordinates by S")->type_name("S");
     app.add_option("--out", out, "the report: each pose's certified and possible facets")->type_name("REPORT.json");
     app.add_flag("--no-tolerance", no_tolerance, "skip the largest tolerance box around exact poses");
+    scene_options_text scene;
+    add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
     if (!parse_command_line(app, argc, argv, "certipose-verify", code)) return std::nullopt;
     try {
@@ -60,11 +74,31 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         a.quiet = quiet;
         if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
         if (!a.out.empty()) check_output("--out", a.out);
+        a.scene = parse_scene_options(scene);
         return a;
     } catch (const usage_error& e) {
         usage_failure("certipose-verify", e.what(), code);
         return std::nullopt;
     }
+}
+
+/// The tolerance box `t` around `centre`, its positions shrunk about the centre (halved, at most
+/// 40 times, then the centre alone) until the camera regions allow every one: a sub-box of `t`,
+/// so still certified. Nothing when not even the centre is allowed.
+std::optional<certipose::pose_box<I>> within_regions(certipose::pose_box<I> t, const std::array<double, 6>& centre,
+                                                     const certipose::camera_regions& regions) {
+    using certipose::region_verdict;
+    if (regions.empty()) return t;
+    const certipose::rounding_guard<I> rounding;
+    for (int n = 0; n < 40 && regions.classify(t.position) != region_verdict::allowed; ++n)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double lo = certipose::lower(t.position[k]), hi = certipose::upper(t.position[k]), c = centre[k];
+            t.position.x[k] = I(std::clamp(c - (c - lo) / 2, lo, c), std::clamp(c + (hi - c) / 2, c, hi));
+        }
+    if (regions.classify(t.position) != region_verdict::allowed)
+        for (std::size_t k = 0; k < 3; ++k) t.position.x[k] = I(centre[k]);
+    if (regions.classify(t.position) != region_verdict::allowed) return std::nullopt;
+    return t;
 }
 
 int run(const arguments& args, const interruption& signals) {
@@ -73,15 +107,21 @@ int run(const arguments& args, const interruption& signals) {
     const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
     const certipose::camera_task input = certipose::read_camera_task(args.camera);
     const std::vector<certipose::pose_input> poses = certipose::read_poses(args.poses);
+    const scene extra = read_scene(args.scene, &stage);
     stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
-    const certipose::pose_solver<policies> solver(mesh, input.calibrated(), input.task);
+    const auto solver = naming_occluders(args.scene, [&] {
+        return certipose::pose_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+    });
     certipose::facet_inspector<policies> inspector(solver);
     stage.done();
 
     double total = 0;
     for (double a : inspector.areas()) total += a;
     nlohmann::ordered_json report;
+    report["format"] = "certipose-verify-report";
+    report["version"] = certipose::detail::json_io::format_version;
     report["mesh"] = {{"path", args.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.scale}};
+    certipose::detail::json_io::put_scene(report, extra.record);  // "occluders", "keep_in", "keep_out"
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     std::vector<char> certified_any(mesh.num_faces(), 0);
     double union_area = 0;
@@ -93,12 +133,16 @@ int run(const arguments& args, const interruption& signals) {
             box.position.x[k] = I(p.position[k][0], p.position[k][1]);
             box.orientation.x[k] = I(p.orientation[k][0], p.orientation[k][1]);
         }
-        const certipose::facet_coverage c = inspector.inspect(box);
+        // Camera regions first: a pose or box not wholly in the allowed space certifies no facet.
+        const certipose::region_verdict where = args.scene.regions.classify(box.position);
+        certipose::facet_coverage c;
+        if (where != certipose::region_verdict::forbidden) c = inspector.inspect(box);
+        if (where != certipose::region_verdict::allowed) c.certified.clear(), c.certified_area = 0;
         for (std::size_t f : c.certified)
             if (!certified_any[f]) certified_any[f] = 1, union_area += inspector.areas()[f];
         nlohmann::ordered_json r;
         r["index"] = i;
-        r["kind"] = p.pose ? "pose" : "box";
+        r["kind"] = certipose::to_string(p.form);
         r["position"] = p.position;
         r["orientation"] = p.orientation;
         r["facets"] = c.certified;
@@ -106,15 +150,27 @@ int run(const arguments& args, const interruption& signals) {
         r["certified_area"] = c.certified_area;
         r["possible_area"] = c.possible_area;
         r["coverage"] = {total > 0 ? c.certified_area / total : 0.0, total > 0 ? c.possible_area / total : 0.0};
+        r["camera_region"] = certipose::to_string(where);
         std::string tolerance_text;
-        if (p.pose && args.tolerance && !c.certified.empty()) {
-            if (const auto t = inspector.largest_box_keeping(*p.pose, c.certified)) {
+        // An exact pose, or the centre of a converted one (whose box is ±converted_pose_half_width
+        // in each angle: the half-widths are measured from that box, so they hold for the true pose).
+        const auto& centre = p.pose ? p.pose : p.converted;
+        const double slack = p.pose ? 0.0 : certipose::converted_pose_half_width;
+        if (centre && args.tolerance && !c.certified.empty()) {
+            std::optional<certipose::pose_box<I>> t = inspector.largest_box_keeping(*centre, c.certified);
+            if (t) t = within_regions(*t, *centre, args.scene.regions);
+            std::array<double, 6> half{};
+            if (t) {
                 const auto rec = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, *t});
-                std::array<double, 6> half{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    half[k] = std::min((*p.pose)[k] - rec.position[k][0], rec.position[k][1] - (*p.pose)[k]);
-                    half[k + 3] = std::min((*p.pose)[k + 3] - rec.orientation[k][0], rec.orientation[k][1] - (*p.pose)[k + 3]);
+                    half[k] = std::min((*centre)[k] - rec.position[k][0], rec.position[k][1] - (*centre)[k]);
+                    half[k + 3] =
+                        std::min((*centre)[k + 3] - rec.orientation[k][0], rec.orientation[k][1] - (*centre)[k + 3]) - slack;
+                    if (!(half[k + 3] >= 0)) t.reset();
                 }
+            }
+            if (t) {
+                const auto rec = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, *t});
                 r["tolerance"] = {{"position", rec.position}, {"orientation", rec.orientation}, {"half_widths", half}};
                 char buf[160];
                 std::snprintf(buf, sizeof buf, "; tolerance +-%.1f/%.1f/%.1f mm, +-%.3f/%.3f/%.3f rad", 1e3 * half[0],
@@ -126,8 +182,12 @@ int run(const arguments& args, const interruption& signals) {
         }
         list.push_back(std::move(r));
         if (!args.quiet)
-            std::printf("pose %zu (%s): %zu facets certified, %zu possible: coverage [%.2f %%, %.2f %%]%s\n", i,
-                        p.pose ? "exact" : "box", c.certified.size(), c.possible.size(),
+            std::printf("pose %zu (%s): %s%zu facets certified, %zu possible: coverage [%.2f %%, %.2f %%]%s\n", i,
+                        p.pose ? "exact" : certipose::to_string(p.form),
+                        where == certipose::region_verdict::forbidden   ? "OUTSIDE the allowed camera space (--keep-in/--keep-out): "
+                        : where == certipose::region_verdict::undecided ? "PARTLY OUTSIDE the allowed camera space (--keep-in/--keep-out): "
+                                                                        : "",
+                        c.certified.size(), c.possible.size(),
                         total > 0 ? 100 * c.certified_area / total : 0.0, total > 0 ? 100 * c.possible_area / total : 0.0,
                         tolerance_text.c_str());
     }
@@ -155,8 +215,9 @@ int main(int argc, char** argv) {
     return report_errors("certipose-verify", [&] {
         std::vector<certipose::named_path> outputs;
         if (!args->out.empty()) outputs.push_back({"--out", args->out});
-        certipose::refuse_overwriting_inputs({{"--mesh", args->mesh}, {"--camera", args->camera}, {"--poses", args->poses}},
-                                             outputs);
+        std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}, {"--poses", args->poses}};
+        add_occluder_inputs(inputs, args->scene);
+        certipose::refuse_overwriting_inputs(inputs, outputs);
         const interruption signals;
         return run(*args, signals);
     });

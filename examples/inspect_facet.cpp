@@ -1,4 +1,4 @@
-// inspect_facet — load a mesh, print one facet's data and the DESIGN.md §6 camera's quantities.
+// inspect_facet — load a mesh, print one facet's data and the case-study camera's quantities.
 //
 // Usage: inspect_facet [MESH] [FACET]
 //   MESH   .off/.obj/.ply/.stl in metres (default: the sample part generated at build time)
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
         print_vector("centroid", f.centroid);
         std::printf("  %-9s %.9g m^2\n", "area", f.area);
 
-        // The camera of DESIGN.md §6 (the paper's case-study camera).
+        // The paper's case-study camera (examples/data/camera.json).
         const certipose::thin_lens_camera camera({.focal_length = 0.012,
                                                   .f_stop = 8,
                                                   .focus_distance = 0.6,

@@ -9,6 +9,18 @@
 // outputs as its contract says (never a half-written file, no temporary left), and exits with
 // 128 + the signal (130 for SIGINT, 143 for SIGTERM). A second signal while it winds down ends the
 // process the default way.
+//
+// The scene options every program takes the same way (`add_scene_options`, `parse_scene_options`):
+//   --occluder MESH[:SCALE]  (repeatable) an extra closed mesh in the occlusion scene — a fixture,
+//                            the conveyor, the cell — read like --mesh, coordinates × SCALE
+//                            (default 1). The text is split at its LAST colon only when what
+//                            follows is a number, so "C:\parts\jig.off" or "a:b.off" are paths;
+//                            a number that is not a positive finite factor is a usage error.
+//   --keep-out REGION        (repeatable) no camera position in REGION
+//   --keep-in REGION         (repeatable) camera positions only in the union of these REGIONs
+// REGION = box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or sphere:X,Y,Z,R (metres, the part's frame after
+// --scale; solver/camera_regions.hpp). Reading the occluders and naming them in the occlusion
+// policy's errors needs CGAL: program_scene.hpp.
 #pragma once
 
 #include <atomic>
@@ -25,11 +37,13 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <certipose/error.hpp>
+#include <certipose/solver/camera_regions.hpp>
 #include <certipose/solver/paving.hpp>
 
 #include <iostream>
@@ -159,6 +173,81 @@ inline double parse_corner_rest(const std::string& text) {
     const double v = parse_number("--corner-rest", text, "a number >= 0");
     if (!(v >= 0.0) || !std::isfinite(v)) throw usage_error("--corner-rest: expected a finite number >= 0, got " + text);
     return v;
+}
+
+/// One --occluder: the mesh file and the factor its coordinates are multiplied by.
+struct occluder_arg {
+    std::filesystem::path path;
+    double scale = 1.0;
+};
+
+/// The scene options of a program (see the header comment), validated.
+struct scene_arguments {
+    std::vector<occluder_arg> occluders;
+    certipose::camera_regions regions;
+};
+
+/// The scene options as given (CLI11 fills them; parse_scene_options checks them).
+struct scene_options_text {
+    std::vector<std::string> occluders, keep_in, keep_out;
+};
+
+/// MESH or MESH:SCALE (see the header comment); the file must exist, as --mesh's must.
+inline occluder_arg parse_occluder(const std::string& text) {
+    occluder_arg o{text, 1.0};
+    if (const auto colon = text.rfind(':'); colon != std::string::npos) {
+        const std::string tail = text.substr(colon + 1);
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(tail.data(), tail.data() + tail.size(), v);
+        if (!tail.empty() && ec == std::errc{} && end == tail.data() + tail.size()) {  // MESH:NUMBER
+            if (!(v > 0.0) || !std::isfinite(v))
+                throw usage_error("--occluder " + text + ": the scale must be a positive finite factor, got '" + tail + "'");
+            o.path = text.substr(0, colon);
+            o.scale = v;
+        }
+    }
+    if (o.path.empty()) throw usage_error("--occluder: no mesh file in '" + text + "'");
+    std::error_code ec;
+    if (!std::filesystem::exists(o.path, ec)) throw usage_error("--occluder: File does not exist: " + o.path.string());
+    if (std::filesystem::is_directory(o.path, ec))
+        throw usage_error("--occluder: " + o.path.string() + " is a directory, not a mesh file");
+    return o;
+}
+
+/// A --keep-in / --keep-out REGION, or a usage error naming the text.
+inline certipose::camera_region parse_region(const std::string& option, const std::string& text) {
+    try {
+        return certipose::parse_camera_region(text, option);
+    } catch (const certipose::invalid_argument& e) {
+        throw usage_error(e.what());
+    }
+}
+
+/// Adds --occluder, --keep-out and --keep-in (repeatable, one value per occurrence) to `app`.
+inline void add_scene_options(CLI::App& app, scene_options_text& text) {
+    app.add_option("--occluder", text.occluders,
+                   "an extra closed mesh in the occlusion scene (fixture, conveyor, cell), read like --mesh, "
+                   "coordinates x SCALE (default 1); repeatable")
+        ->type_name("MESH[:SCALE]")
+        ->allow_extra_args(false);
+    app.add_option("--keep-out", text.keep_out,
+                   "no camera position in REGION: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or sphere:X,Y,Z,R "
+                   "(metres, part frame after --scale); repeatable")
+        ->type_name("REGION")
+        ->allow_extra_args(false);
+    app.add_option("--keep-in", text.keep_in,
+                   "camera positions only inside REGION (or another --keep-in; same syntax); repeatable")
+        ->type_name("REGION")
+        ->allow_extra_args(false);
+}
+
+/// The scene options checked (usage_error naming the offending text).
+inline scene_arguments parse_scene_options(const scene_options_text& text) {
+    scene_arguments s;
+    for (const auto& o : text.occluders) s.occluders.push_back(parse_occluder(o));
+    for (const auto& r : text.keep_in) s.regions.keep_in.push_back(parse_region("--keep-in", r));
+    for (const auto& r : text.keep_out) s.regions.keep_out.push_back(parse_region("--keep-out", r));
+    return s;
 }
 
 /// The file will be written at the end of a possibly long run: fail now if it cannot be.

@@ -3,17 +3,28 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev
           libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev
-          libopenmpi-dev openmpi-bin libglpk-dev clang-14 libclang-rt-14-dev)
+          libopenmpi-dev openmpi-bin libglpk-dev clang-14 libclang-rt-14-dev libyaml-cpp-dev libtinygltf-dev
+          chromium)
+# Node.js bundles the web viewer (certipose-export --format html) and runs its tests; a machine
+# that has no `node` gets Debian's.
+command -v node >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-echo "install-deps: installing ${missing[*]}"
-sudo=""
-[ "$(id -u)" -eq 0 ] || sudo="sudo"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# The web viewer's JavaScript (three.js, esbuild, gltf-validator, playwright-core), exactly as the
+# lockfile pins it; again only when web/node_modules is missing or older than the lockfile.
+web="$(dirname "$0")/../web"
+if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  echo "install-deps: npm ci in web/"
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
+fi

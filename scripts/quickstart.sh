@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# README command (1): install what is missing, build the examples (Release, -O2) and run the
+# README command (1): install what is missing, build the programs the README shows (Release,
+# -O2: certipose-solve, -part, -plan, -verify, -export and the sample part) and run the
 # main example — the paper's case study (§8) — on the bundled sample part: facet 900, a
-# top-surface facet next to a protrusion, ε_p = 0.1 m, ε_o = 0.38 rad, the DESIGN.md §6 camera.
+# top-surface facet next to a protrusion, ε_p = 0.1 m, ε_o = 0.38 rad, the camera of examples/data/camera.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake --preset release -DCERTIPOSE_BUILD_TESTS=OFF
-cmake --build --preset release --target certipose-solve certipose_sample_part
+cmake --build --preset release --target certipose-solve certipose-part certipose-plan certipose-verify \
+  certipose-export certipose_sample_part
 out=build/release/case-study
 mkdir -p "$out"
 build/release/examples/certipose-solve --mesh build/release/examples/sample_part.off --facet 900 \

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Renders a certipose result (DESIGN.md §6 JSON) with its part mesh to a PNG: the part in grey,
-the facet of interest in red, VALID position boxes in green (BOUNDARY ones as faint yellow
-outlines), and the nominal optical axis of a few VALID boxes.
+"""Renders a certipose result (the result JSON of docs/io.md) with its part mesh to a PNG: the part in grey,
+the facet of interest in red, VALID position boxes in green and BOUNDARY ones as faint yellow
+outlines; the title gives the counts, the paving, the certified volume and the solve time, all
+from the result JSON.
 
 Needs Debian's python3-matplotlib (a documentation tool only; the library does not use it):
     /usr/bin/python3 scripts/render_case_study.py PART.off RESULT.json OUT.png
@@ -78,8 +79,22 @@ def main(off_path, result_path, png_path):
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
     s = result["stats"]
-    ax.set_title("certipose case study: facet %d, %d VALID (green) and %d BOUNDARY (yellow) pose boxes, %.3f s"
-                 % (fi, s["valid"], s["boundary"], s["seconds"]))
+    settings = result.get("settings", {})
+    steps = [settings.get(k) for k in ("inner_contraction", "occlusion_cuts", "leaf_corner_boxes")]
+    if None in steps:
+        paving = None  # an older file that does not say
+    elif not any(steps):
+        paving = "the paper's paving"
+    elif all(steps):
+        paving = "default paving (corner depth %d)" % settings.get("corner_depth", 1)
+    else:
+        paving = "paving: " + " + ".join(n for n, on in zip(("inner contraction", "occlusion cuts", "corner boxes"), steps)
+                                         if on)
+    volume = s.get("valid_volume")
+    details = [paving, None if volume is None else "%.3f m\N{SUPERSCRIPT THREE} of positions certified" % volume,
+               "%.3f s" % s["seconds"]]
+    ax.set_title("certipose case study: facet %d, %d VALID (green) and %d BOUNDARY (yellow) pose boxes\n%s"
+                 % (fi, s["valid"], s["boundary"], ", ".join(d for d in details if d)))
     fig.tight_layout()
     fig.savefig(png_path)
 

@@ -1,4 +1,4 @@
-// docs/camera.md — the DESIGN.md camera: K, FOV half-angles and the in-focus range.
+// docs/camera.md — the case-study camera (examples/data/camera.json): K, FOV half-angles and the in-focus range.
 #include <certipose/certipose.hpp>  // or just <certipose/camera.hpp>
 
 #include <cstdio>

@@ -8,7 +8,7 @@
 
 int main() {
     using I = certipose::boost_interval;
-    // The camera/task input of DESIGN.md §6 (certipose::read_camera_task reads it from a file).
+    // The camera/task input JSON of docs/io.md (certipose::read_camera_task reads it from a file).
     const certipose::camera_task input = certipose::parse_camera_task(R"({
         "camera": {"model": "thin_lens", "focal_length": 0.012, "f_stop": 8,
                    "focus_distance": 0.6, "max_blur_circle": 6.9e-6, "pixel_pitch": 3.45e-6,

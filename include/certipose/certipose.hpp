@@ -51,6 +51,7 @@
 #include "certipose/orientation/paper_orientation.hpp"  // IWYU pragma: export
 #include "certipose/orientation/paving_orientation.hpp"  // IWYU pragma: export
 
+#include "certipose/solver/camera_regions.hpp"  // IWYU pragma: export
 #include "certipose/solver/contraction.hpp"  // IWYU pragma: export
 #include "certipose/solver/policies.hpp"  // IWYU pragma: export
 #include "certipose/solver/pose_solver.hpp"  // IWYU pragma: export
@@ -61,5 +62,6 @@
 #include "certipose/io/output_files.hpp"  // IWYU pragma: export
 #include "certipose/io/ply.hpp"  // IWYU pragma: export
 #include "certipose/io/result_document.hpp"  // IWYU pragma: export
+#include "certipose/io/scene_record.hpp"  // IWYU pragma: export
 #include "certipose/io/write_file.hpp"  // IWYU pragma: export
 #include "certipose/io/write_mesh.hpp"  // IWYU pragma: export

@@ -13,7 +13,7 @@
 
 namespace certipose {
 
-/// The inspection task for one facet (DESIGN.md §1, §3).
+/// The inspection task for one facet (constraints 2 and 4 of docs/conventions.md#what-a-valid-box-certifies).
 struct inspection_task {
     /// θ_v: the sight line to the facet centre must make at least this angle with the facet's
     /// plane, i.e. the angle to the normal is at most π/2 − θ_v (constraint 4). Radians, [0, π/2).

@@ -59,10 +59,10 @@ inline const char* to_string(termination t) noexcept {
     return "?";
 }
 
-/// Why a BOUNDARY box was left undecided: a constraint (DESIGN.md §3) that could be proven
+/// Why a BOUNDARY box was left undecided: a constraint (docs/conventions.md) that could be proven
 /// neither true nor false over the whole box — the first one the set checks that way (the
 /// paper's set: backface, viewing angle, d_max, facet contact, d_min) — or the budget that ended
-/// the run first.
+/// the run first, or (after the solve) the surface of a camera region.
 enum class boundary_reason : std::uint8_t {
     facet_contact,  ///< constraint 1: the box may touch the facet
     distance,       ///< constraint 2: d_min ≤ ‖p − q‖ ≤ d_max undecided (focus, resolution)
@@ -71,9 +71,12 @@ enum class boundary_reason : std::uint8_t {
     constraint,     ///< a user constraint set (one that does not say which of its constraints)
     occlusion,      ///< constraint 6: some sight lines blocked, some free (occlusion PARTIAL)
     field_of_view,  ///< constraint 5: no orientation box certified, even at ε_p
-    budget          ///< not decided: a box budget, deadline or cancellation ended the run
+    budget,         ///< not decided: a box budget, deadline or cancellation ended the run
+    /// a piece of a VALID box straddling a keep-in or keep-out region's surface at the regions'
+    /// minimum width (solver/camera_regions.hpp): certified, but not every position is allowed
+    camera_region
 };
-inline constexpr std::size_t boundary_reason_count = 8;
+inline constexpr std::size_t boundary_reason_count = 9;
 
 /// "facet_contact", "distance", ... (JSON, messages).
 constexpr std::string_view to_string(boundary_reason r) noexcept {
@@ -86,6 +89,7 @@ constexpr std::string_view to_string(boundary_reason r) noexcept {
         case boundary_reason::occlusion: return "occlusion";
         case boundary_reason::field_of_view: return "field_of_view";
         case boundary_reason::budget: return "budget";
+        case boundary_reason::camera_region: return "camera_region";
     }
     return "?";
 }

@@ -1,4 +1,4 @@
-// The files of DESIGN.md §6 with CGAL in the loop: the result JSON round trip over both
+// The files of docs/conventions.md#files with CGAL in the loop: the result JSON round trip over both
 // interval backends (the CGAL one holds only the SSE rounding mode, which the readers must
 // still neutralise), and the PLY picture parsed back by CGAL's own PLY reader (read_mesh) —
 // an independent reader, like MeshLab's and ParaView's.
@@ -16,12 +16,16 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
+#include <numbers>
+#include <random>
 #include <string>
 #include <typeinfo>
 #include <utility>
@@ -213,6 +217,21 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         {"pose box upside down", [&] {
              certipose::read_poses(file("box.json", R"({"poses": [{"position": [[0, 1], [2, 1], [0, 1]], "orientation": [[0, 1], [0, 1], [0, 1]]}]})"));
          }},
+        {"pose quaternion not unit", [&] {
+             certipose::read_poses(file("quaternion.json", R"({"poses": [{"position": [0, 0, 1], "quaternion": [0.5, 0, 0, 0.8]}]})"));
+         }},
+        {"pose at the ZXZ gimbal lock", [&] {
+             certipose::read_poses(file("lock.json", R"({"poses": [{"position": [0, 0, 1], "quaternion": [1, 0, 0, 0]}]})"));
+         }},
+        {"pose matrix not a rotation", [&] {
+             certipose::read_poses(file("matrix.json", R"({"poses": [{"matrix": [[1, 0, 0, 0], [0, 0, -1.01, 0], [0, 1, 0, 1], [0, 0, 0, 1]]}]})"));
+         }},
+        {"document of another version", [&] {
+             certipose::read_plan(file("version.json", R"({"format": "certipose-plan", "version": 2})"));
+         }},
+        {"document of another format", [&] {
+             certipose::read_plan(file("format.json", R"({"format": "certipose-result", "version": 1})"));
+         }},
         {"output is an input", [&] {
              certipose::refuse_overwriting_inputs({{"--mesh", file("part.off", tetra_off)}}, {{"--out", dir / "." / "part.off"}});
          }},
@@ -231,4 +250,252 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         const std::string row = "| " + std::string(c.name) + " | `" + type + "` | `" + message + "` |";
         CHECK_MESSAGE(page.find(row) != std::string::npos, "docs/errors.md lacks the row (add a last column):\n" << row);
     }
+}
+
+// ==== PLAN.json, summary.json and POSES.json: format, version, plan reader, pose forms =========
+
+namespace {
+
+/// A plan with awkward doubles (1/3, subnormal, -0, the largest double) and every optional set.
+certipose::plan_document sample_plan() {
+    certipose::plan_document p;
+    p.mesh = {"parts/bracket.off", 2300, 0.001, "0123456789abcdef"};
+    p.camera.width_px = 2448;
+    p.camera.height_px = 2048;
+    p.camera.K = {{{3478.2608695652175, 0, 1224}, {0, 3478.2608695652175, 1024}, {0, 0, 1}}};
+    p.camera.d_min = 0.489636037212339;
+    p.camera.d_max = std::numeric_limits<double>::infinity();  // written as null
+    p.camera.mount_offset = {0.01, -0.0125, 1.0 / 3};
+    p.task = {0.35, 1e-4};
+    p.candidates = 17;
+    p.tolerance = std::array<double, 2>{0.005, 0.02};
+    p.target_coverage = 0.95;
+    p.max_cameras = 4;
+    certipose::plan_document::camera_box c;
+    c.position = {{{0.1, 0.2}, {1.0 / 3, 0.4}, {-0.0, 5e-324}}};
+    c.orientation = {{{-3.141592653589793, -3.0}, {0.1, 0.2}, {-0.19, 1.7976931348623157e308}}};
+    c.nominal = {0.15, 0.36666666666666664, 0, -3.0707963267948966, 0.15000000000000002, 0.5};
+    c.facets = {1, 2, 900};
+    c.certified_area = 0.0012345678901234567;
+    c.from_facet = 900;
+    p.cameras = {c, c};
+    p.cameras[1].facets.clear();
+    p.coverage = {0.0024691357802469134, 0.003, 0.16, 2, "lp", {0.0012345678901234567, 0.0024691357802469134}};
+    p.uncovered = {{0, certipose::uncovered_reason::never_visible}, {3, certipose::uncovered_reason::boundary_only},
+                   {4, certipose::uncovered_reason::not_selected}, {5, certipose::uncovered_reason::not_solved},
+                   {6, certipose::uncovered_reason::not_finished}};
+    return p;
+}
+
+/// field() and what() of the invalid_argument `read` throws.
+std::pair<std::string, std::string> argument_error(const std::function<void()>& read) {
+    try {
+        read();
+    } catch (const certipose::invalid_argument& e) {
+        return {e.field(), e.what()};
+    }
+    FAIL("no invalid_argument");
+    return {};
+}
+
+}  // namespace
+
+TEST_CASE("PLAN.json: read_plan reads back exactly what plan_to_json wrote") {
+    const fs::path file = scratch("plan.json");
+    for (const bool optional_set : {true, false}) {
+        certipose::plan_document doc = sample_plan();
+        if (!optional_set) {
+            doc.mesh.digest.clear();
+            doc.tolerance.reset();
+            doc.target_coverage.reset();
+            doc.max_cameras.reset();
+            doc.task.max_metres_per_pixel.reset();
+            doc.camera.mount_offset = {};
+            doc.camera.d_max = 0.7745933384972885;
+            doc.cameras.clear();
+            doc.uncovered.clear();
+            doc.coverage.curve.clear();
+        }
+        certipose::write_json_file(file, certipose::plan_to_json(doc));
+        const certipose::plan_document back = certipose::read_plan(file);
+        CHECK(back == doc);
+        CHECK(std::signbit(doc.cameras.empty() ? -0.0 : back.cameras[0].position[2][0]));  // -0 kept
+        // The same document, bit for bit, written again.
+        CHECK(certipose::json_text(certipose::plan_to_json(back)) == certipose::json_text(certipose::plan_to_json(doc)));
+    }
+    // The leading keys; mount_offset only when not zero.
+    const auto j = certipose::plan_to_json(sample_plan());
+    std::vector<std::string> keys;
+    for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+    CHECK(keys == std::vector<std::string>{"format", "version", "mesh", "camera", "task", "settings", "occluders", "keep_in",
+                                           "keep_out", "cameras", "coverage", "uncovered"});
+    CHECK(j["format"] == "certipose-plan");
+    CHECK(j["version"] == 1);
+    CHECK(j["camera"]["mount_offset"].size() == 3);
+    // A file without format and version (written before they existed) is version 1.
+    auto old = j;
+    old.erase("format");
+    old.erase("version");
+    CHECK(certipose::plan_from_json(nlohmann::json::parse(old.dump()), "old.json") == sample_plan());
+}
+
+TEST_CASE("PLAN.json: bad documents are errors naming the file and the JSON path") {
+    const auto good = nlohmann::json::parse(certipose::plan_to_json(sample_plan()).dump());
+    const auto expect = [&](const std::function<void(nlohmann::json&)>& edit, const std::string& field,
+                            const std::string& message) {
+        nlohmann::json j = good;
+        edit(j);
+        const auto [f, what] = argument_error([&] { (void)certipose::plan_from_json(j, "PLAN.json"); });
+        CHECK(f == field);
+        CHECK(what == message);
+    };
+    expect([](auto& j) { j["version"] = 2; }, "version", "PLAN.json: \"version\": 2 is not supported (this build reads version 1)");
+    expect([](auto& j) { j["format"] = "certipose-part-summary"; }, "format",
+           "PLAN.json: \"format\": \"certipose-part-summary\" is not supported here (expected \"certipose-plan\")");
+    expect([](auto& j) { j.erase("cameras"); }, "cameras", "PLAN.json: cameras: missing required field (an array)");
+    expect([](auto& j) { j["cameras"] = nlohmann::json::object(); }, "cameras", "PLAN.json: cameras: expected an array, got an object");
+    expect([](auto& j) { j["cameras"][1]["position"][0] = {0.3, 0.2}; }, "cameras[1].position[0]",
+           "PLAN.json: cameras[1].position[0]: lower bound 0.3 is above upper bound 0.2");
+    expect([](auto& j) { j["cameras"][0]["facets"][2] = -1; }, "cameras[0].facets[2]",
+           "PLAN.json: cameras[0].facets[2]: expected a non-negative integer, got number -1");
+    expect([](auto& j) { j["cameras"][0]["nominal"] = {1, 2, 3}; }, "cameras[0].nominal",
+           "PLAN.json: cameras[0].nominal: expected an array of 6 numbers, got an array of 3");
+    expect([](auto& j) { j["settings"]["tolerance"] = 0.005; }, "settings.tolerance",
+           "PLAN.json: settings.tolerance: expected an array of 2 numbers, got number 0.005");
+    expect([](auto& j) { j["camera"]["mount_offset"] = {0, 0}; }, "camera.mount_offset",
+           "PLAN.json: camera.mount_offset: expected an array of 3 numbers, got an array of 2");
+    expect([](auto& j) { j["uncovered"][1]["reason"] = "shy"; }, "uncovered[1].reason",
+           "PLAN.json: uncovered[1].reason: unknown reason \"shy\" (expected never visible, only in BOUNDARY boxes at this "
+           "eps, not selected, not solved or solve stopped early)");
+    expect([](auto& j) { j["coverage"].erase("lower_bound_method"); }, "coverage.lower_bound_method",
+           "PLAN.json: coverage.lower_bound_method: missing required field (a string)");
+    // Files: missing is an io_error; JSON errors name the file.
+    CHECK_THROWS_AS((void)certipose::read_plan(scratch("no-such-plan.json")), certipose::io_error);
+    const fs::path bad = scratch("bad-plan.json");
+    std::ofstream(bad) << "{\"format\": \"certipose-plan\", \"version\": 9}";
+    CHECK(argument_error([&] { (void)certipose::read_plan(bad); }).second ==
+          bad.string() + ": \"version\": 9 is not supported (this build reads version 1)");
+}
+
+TEST_CASE("summary.json: format and version lead, mount_offset round-trips, other versions are refused") {
+    certipose::part_summary s;
+    s.mesh = {"part.off", 4, 1.0, "0123456789abcdef"};
+    s.camera = sample_plan().camera;
+    s.task = {0.35, std::nullopt};
+    s.settings.position_eps = 0.1;
+    s.settings.orientation_eps = 0.38;
+    s.totals.seconds = 1.5;
+    const fs::path dir = scratch("summary") / "run";
+    fs::create_directories(dir);
+    const auto j = certipose::part_summary_to_json(s);
+    CHECK(j.begin().key() == "format");
+    CHECK(j["format"] == "certipose-part-summary");
+    CHECK(std::next(j.begin()).key() == "version");
+    certipose::write_json_file(dir / "summary.json", j);
+    const certipose::part_summary back = certipose::read_part_summary(dir);
+    CHECK(back.camera == s.camera);
+    CHECK(back.mesh == s.mesh);
+
+    auto v2 = nlohmann::json::parse(j.dump());
+    v2["version"] = 2;
+    std::ofstream(dir / "summary.json") << v2.dump();
+    const auto [field, what] = argument_error([&] { (void)certipose::read_part_summary(dir); });
+    CHECK(field == "version");
+    CHECK(what == (dir / "summary.json").string() + ": \"version\": 2 is not supported (this build reads version 1)");
+    auto other = nlohmann::json::parse(j.dump());
+    other["format"] = "certipose-plan";
+    CHECK(argument_error([&] { (void)certipose::part_summary_from_json(other); }).second ==
+          "\"format\": \"certipose-plan\" is not supported here (expected \"certipose-part-summary\")");
+    other.erase("format");  // older files: no format, no version
+    other.erase("version");
+    CHECK(certipose::part_summary_from_json(other).camera == s.camera);
+}
+
+TEST_CASE("POSES.json: quaternion and 4x4 poses become 1e-8 rad boxes around their ZXZ angles") {
+    std::mt19937_64 e(5);
+    std::uniform_real_distribution<double> any(-3.1, 3.1), tilt(1e-3, 3.14), coordinate(-2, 2);
+    for (int n = 0; n < 500; ++n) {
+        const double phi = any(e), gamma = tilt(e), beta = any(e);
+        const std::array<double, 3> x{coordinate(e), coordinate(e), coordinate(e)};
+        const auto q = certipose::quaternion_from_zxz(phi, gamma, beta);
+        const Eigen::Matrix3d r = certipose::zxz_rotation(phi, gamma, beta);
+        nlohmann::json matrix = nlohmann::json::array();
+        for (int a = 0; a < 3; ++a) matrix.push_back({r(a, 0), r(a, 1), r(a, 2), x[static_cast<std::size_t>(a)]});
+        matrix.push_back({0, 0, 0, 1});
+        nlohmann::json doc;
+        doc["poses"] = {{{"position", x}, {"quaternion", q}},
+                        {{"position", x}, {"quaternion", {-q[0], -q[1], -q[2], -q[3]}}},  // the same rotation
+                        {{"matrix", matrix}}};
+        const auto poses = certipose::poses_from_json(doc);
+        REQUIRE(poses.size() == 3);
+        for (std::size_t i = 0; i < 3; ++i) {
+            const auto& p = poses[i];
+            CHECK(p.form == (i < 2 ? certipose::pose_form::quaternion : certipose::pose_form::matrix));
+            CHECK_FALSE(p.pose.has_value());  // not an exact pose
+            REQUIRE(p.converted.has_value());
+            const double angles[3] = {phi, gamma, beta};
+            for (std::size_t k = 0; k < 3; ++k) {
+                CHECK(p.position[k][0] == x[k]);  // the position stays exact
+                CHECK(p.position[k][1] == x[k]);
+                CHECK(std::abs((*p.converted)[k + 3] - angles[k]) < 1e-9);
+                // The box holds the true angle with room to spare, and is 2e-8 wide.
+                CHECK(p.orientation[k][0] < angles[k] - 5e-9);
+                CHECK(p.orientation[k][1] > angles[k] + 5e-9);
+                CHECK(std::abs(p.orientation[k][1] - p.orientation[k][0] - 2 * certipose::converted_pose_half_width) < 1e-15);
+            }
+        }
+    }
+    // PLAN.json's format and version are accepted; another format is not.
+    nlohmann::json plan = nlohmann::json::parse(certipose::plan_to_json(sample_plan()).dump());
+    CHECK(certipose::poses_from_json(plan).size() == 2);
+    plan["format"] = "certipose-result";
+    CHECK(argument_error([&] { (void)certipose::poses_from_json(plan); }).first == "format");
+}
+
+TEST_CASE("POSES.json: a non-unit quaternion, a bad matrix and the gimbal lock are errors naming the pose") {
+    const fs::path file = scratch("poses-bad.json");
+    const auto expect = [&](const std::string& pose, const std::string& field, const std::string& message) {
+        std::ofstream(file) << "{\"poses\": [[0, 0, 1, 0, 0.5, 0], " << pose << "]}";
+        const auto [f, what] = argument_error([&] { (void)certipose::read_poses(file); });
+        CHECK(f == field);
+        CHECK(what == file.string() + ": " + message);
+    };
+    expect(R"({"position": [0, 0, 1], "quaternion": [0, 0, 0, 2]})", "poses[1].quaternion",
+           "poses[1].quaternion: not a unit quaternion [qx, qy, qz, qw]: its norm is 2 (must be 1 within 1e-06)");
+    expect(R"({"position": [0, 0, 1], "quaternion": [0.5, 0, 0, 0.866]})", "poses[1].quaternion",
+           "poses[1].quaternion: not a unit quaternion [qx, qy, qz, qw]: its norm is 0.9999779997579946 (must be 1 within 1e-06)");
+    expect(R"({"position": [0, 0, 1], "quaternion": [0, 0, 0.6, 0.8]})", "poses[1].quaternion",
+           "poses[1].quaternion: the orientation is at the ZXZ gimbal lock (sin gamma = 0 < 1e-06: the optical axis is "
+           "along world +Z or -Z), where it has no accurate ZXZ angles; give this pose as ZXZ angles [x, y, z, phi, "
+           "gamma, beta] instead");
+    expect(R"({"position": [0, 0, 1], "quaternion": [1, 0, 0, 0]})", "poses[1].quaternion",
+           "poses[1].quaternion: the orientation is at the ZXZ gimbal lock (sin gamma = 0 < 1e-06: the optical axis is "
+           "along world +Z or -Z), where it has no accurate ZXZ angles; give this pose as ZXZ angles [x, y, z, phi, "
+           "gamma, beta] instead");
+    expect(R"({"quaternion": [0, 0, 0, 1]})", "poses[1].position", "poses[1].position: missing required field (3 numbers [x, y, z])");
+    expect(R"({"position": [[0, 1], [0, 1], [0, 1]], "quaternion": [0, 0, 0, 1]})", "poses[1].position[0]",
+           "poses[1].position[0]: expected a number, got an array of 2");
+    expect(R"({"matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 1], [0, 0, 0, 1]]})", "poses[1].matrix",
+           "poses[1].matrix: the orientation is at the ZXZ gimbal lock (sin gamma = 0 < 1e-06: the optical axis is along "
+           "world +Z or -Z), where it has no accurate ZXZ angles; give this pose as ZXZ angles [x, y, z, phi, gamma, "
+           "beta] instead");
+    expect(R"({"matrix": [[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 1], [0, 0, 1, 1]]})", "poses[1].matrix[3]",
+           "poses[1].matrix[3]: the last row of a camera-to-world transform must be [0, 0, 0, 1], got [0, 0, 1, 1]");
+    expect(R"({"matrix": [[1, 0, 0, 0], [0, 0, -1.01, 0], [0, 1, 0, 1], [0, 0, 0, 1]]})", "poses[1].matrix",
+           "poses[1].matrix: the rotation part (upper-left 3x3) is not orthonormal within 1e-06: R^T R differs from the "
+           "identity by up to 0.020100000000000007");
+    expect(R"({"matrix": [[-1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 1], [0, 0, 0, 1]]})", "poses[1].matrix",
+           "poses[1].matrix: the rotation part (upper-left 3x3) has determinant -1: a reflection, not a rotation");
+    expect(R"({"matrix": [[1, 0, 0], [0, 0, -1], [0, 1, 0]]})", "poses[1].matrix",
+           "poses[1].matrix: expected an array of 4 arrays of 4 numbers, got an array of 3");
+    expect(R"({"matrix": [[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 1], [0, 0, 0, 1]], "position": [0, 0, 1]})", "poses[1].position",
+           "poses[1].position: a pose given by \"matrix\" takes its position from the matrix's last column");
+    expect(R"({"position": [0, 0, 1], "quaternion": [0, 0, 0, 1], "orientation": [[0, 1], [0, 1], [0, 1]]})", "poses[1]",
+           "poses[1]: give the orientation once: one of \"pose\", \"orientation\", \"quaternion\" or \"matrix\"");
+    // A camera looking sideways (γ = π/2, optical axis along world −y) converts fine.
+    std::ofstream(file) << R"({"poses": [{"matrix": [[1, 0, 0, 0.5], [0, 0, -1, 0], [0, 1, 0, 1], [0, 0, 0, 1]]}]})";
+    const auto p = certipose::read_poses(file);
+    REQUIRE(p.size() == 1);
+    CHECK(std::abs((*p[0].converted)[4] - std::numbers::pi / 2) < 1e-15);
+    CHECK(p[0].position[0][0] == 0.5);
 }

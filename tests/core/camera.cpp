@@ -1,4 +1,4 @@
-// Tests for the camera module: hand-computed values for the DESIGN.md §6 camera, the thin-lens
+// Tests for the camera module: hand-computed values for the case-study camera, the thin-lens
 // identities of paper Eqs. 1–7, the inward rounding of [d_min, d_max] (checked exactly with
 // rationals), the resolution cap and parameter validation.
 #include <certipose/camera.hpp>
@@ -30,7 +30,7 @@ static_assert(CameraModel<pinhole_camera>);
 static_assert(!CameraModel<int>);
 static_assert(!CameraModel<thin_lens_parameters>);
 
-// The camera of DESIGN.md §6.
+// The case-study camera (examples/data/camera.json).
 thin_lens_parameters design_parameters() {
     return {.focal_length = 0.012,
             .f_stop = 8,

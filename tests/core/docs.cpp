@@ -84,3 +84,31 @@ TEST_CASE("every C++ snippet of the documentation is an excerpt of a compiled ex
     MESSAGE(checked << " snippets checked");
     CHECK(checked >= 12);
 }
+
+TEST_CASE("the documentation, headers, examples, scripts and benchmarks point nowhere outside the repository") {
+    // Users get the repository and nothing beside it: no design notes, no test data. So no file
+    // they read may send them to "DESIGN.md" or to "../shared" (the developers' data folder, which
+    // the tests alone may read): the conventions and formats are docs/conventions.md.
+    const fs::path root = CERTIPOSE_SOURCE_DIR;
+    const std::vector<std::string> outside{"DESIGN.md", "../shared"};
+    std::vector<fs::path> files{root / "README.md"};
+    for (const char* dir : {"docs", "include", "examples", "scripts", "bench"})
+        for (const auto& e : fs::recursive_directory_iterator(root / dir))
+            if (e.is_regular_file()) files.push_back(e.path());
+    REQUIRE(files.size() >= 100);
+    std::size_t found = 0;
+    for (const auto& file : files) {
+        const auto lines = lines_of(file);
+        for (std::size_t i = 0; i < lines.size(); ++i)
+            for (const auto& word : outside)
+                if (lines[i].find(word) != std::string::npos) {
+                    ++found;
+                    FAIL_CHECK(fs::relative(file, root).string()
+                               << ":" << i + 1 << " mentions \"" << word
+                               << "\", which users do not have; point into the repository instead "
+                                  "(docs/conventions.md, or the page that says it)");
+                }
+    }
+    MESSAGE(files.size() << " files checked");
+    CHECK(found == 0);
+}

@@ -1,4 +1,4 @@
-// Tests for the files that leave the library (DESIGN.md §6): the camera/task input JSON (every
+// Tests for the files that leave the library (docs/conventions.md#files): the camera/task input JSON (every
 // error path), the result JSON (exact round trip of doubles, the contract's field layout,
 // reader errors), atomic writes (nothing half-written, nothing left behind), the PLY picture
 // (parsed back by a small reader written here) and the certipose-solve command line.
@@ -249,7 +249,7 @@ double six_volume(const ply_file& f, std::size_t first_face, std::size_t count) 
 
 // ==== camera/task input ==========================================================================
 
-TEST_CASE("the DESIGN.md camera/task JSON reads into a thin-lens camera and a task") {
+TEST_CASE("the case-study camera/task JSON reads into a thin-lens camera and a task") {
     const certipose::camera_task in = certipose::parse_camera_task(design_input);
     REQUIRE(std::holds_alternative<certipose::thin_lens_camera>(in.camera));
     const auto& c = std::get<certipose::thin_lens_camera>(in.camera);
@@ -549,7 +549,12 @@ TEST_CASE_TEMPLATE("the result JSON round-trips every double exactly", I, CERTIP
     const auto raw = nlohmann::ordered_json::parse(slurp(file));
     std::vector<std::string> keys;
     for (auto it = raw.begin(); it != raw.end(); ++it) keys.push_back(it.key());
-    CHECK(keys == std::vector<std::string>{"facet", "camera", "task", "settings", "boxes", "stats"});
+    CHECK(keys == std::vector<std::string>{"format", "version", "facet", "camera", "task", "settings", "occluders", "keep_in",
+                                           "keep_out", "boxes", "stats"});
+    CHECK(raw["format"] == "certipose-result");
+    CHECK(raw["version"].is_number_integer());
+    CHECK(raw["version"] == 1);
+    CHECK_FALSE(raw["camera"].contains("mount_offset"));  // written only when not zero
     CHECK(raw["camera"]["width_px"].is_number_integer());
     CHECK(raw["camera"]["width_px"] == 2448);
     CHECK(raw["camera"]["K"][2] == json::array({0.0, 0.0, 1.0}));
@@ -566,9 +571,10 @@ TEST_CASE_TEMPLATE("the result JSON round-trips every double exactly", I, CERTIP
     CHECK(raw["stats"]["boundary_reasons"]["occlusion"] == 0);
     CHECK(raw["stats"]["occlusion_checked"] == true);
     CHECK(raw["settings"]["orientation_eps"] == 0.38);
-    // One member per line, one box per line: "{", 4 members, "boxes": [, 2 boxes, "],", stats, "}".
+    // One member per line, one box per line: "{", 9 members, "boxes": [, 2 boxes, "],", stats, "}".
     const std::string text = slurp(file);
-    CHECK(std::count(text.begin(), text.end(), '\n') == 11);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 16);
+    CHECK(text.rfind("{\n  \"format\": \"certipose-result\",\n  \"version\": 1,\n  \"facet\": ", 0) == 0);
 }
 
 TEST_CASE("a result whose occlusion was not checked says so on every VALID box") {
@@ -726,6 +732,107 @@ TEST_CASE("the result reader ignores extra fields and names what is missing or w
     expect(j, "facet.normal", "missing required field");
 
     CHECK_THROWS_AS((void)certipose::parse_result_json("{\"facet\": }"), certipose::io_error);
+}
+
+TEST_CASE("format and version: the result reader accepts none or its own, and names any other") {
+    certipose::result_document d;
+    d.boxes.push_back({certipose::box_class::valid, {{{0, 1}, {0, 1}, {0, 1}}}, {{{0, 1}, {0, 1}, {0, 1}}}});
+    const nlohmann::ordered_json good = certipose::result_to_json(d);
+    CHECK(good.begin().key() == "format");
+    CHECK(std::next(good.begin()).key() == "version");
+
+    // Files written before the fields existed are version 1; a float 1.0 is 1 too.
+    auto j = good;
+    j.erase("format");
+    j.erase("version");
+    CHECK(certipose::parse_result_json(j.dump(), "r.json").boxes.size() == 1);
+    j = good;
+    j["version"] = 1.0;
+    CHECK(certipose::parse_result_json(j.dump(), "r.json").boxes.size() == 1);
+
+    const auto error = [](const nlohmann::ordered_json& bad) -> std::pair<std::string, std::string> {
+        try {
+            (void)certipose::parse_result_json(bad.dump(), "r.json");
+        } catch (const certipose::invalid_argument& e) {
+            return {e.field(), e.what()};
+        }
+        FAIL("no error for " << bad.dump());
+        return {};
+    };
+    j = good;
+    j["version"] = 2;
+    CHECK(error(j) == std::pair<std::string, std::string>{"version", "r.json: \"version\": 2 is not supported (this build reads version 1)"});
+    j["version"] = "1";
+    CHECK(error(j).second == "r.json: \"version\": \"1\" is not supported (this build reads version 1)");
+    j = good;
+    j["format"] = "certipose-plan";
+    CHECK(error(j) == std::pair<std::string, std::string>{
+                          "format", "r.json: \"format\": \"certipose-plan\" is not supported here (expected \"certipose-result\")"});
+    j["format"] = json::array({1, 2});  // the format is checked before the version
+    j["version"] = 7;
+    CHECK(error(j).second == "r.json: \"format\": an array of 2 is not supported here (expected \"certipose-result\")");
+
+    // The camera/task input takes an optional "version": 1, and no "format".
+    json in = design_json();
+    in["version"] = 1;
+    CHECK_NOTHROW((void)certipose::parse_camera_task(in.dump(), "cam.json"));
+    in["version"] = 3;
+    const auto e = input_error(in);
+    CHECK(e.field() == "version");
+    CHECK(std::string(e.what()) == "cam.json: \"version\": 3 is not supported (this build reads version 1)");
+    in = design_json();
+    in["format"] = "certipose-camera";
+    expect_input_error(in, "format", "unknown field (top-level fields: version, camera, task)");
+}
+
+TEST_CASE("camera.mount_offset: optional, finite, kept by camera_task and written back in every camera record") {
+    using I = certipose::boost_interval;
+    json j = design_json();
+    CHECK(certipose::parse_camera_task(j.dump()).mount_offset == std::array<double, 3>{});
+    j["camera"]["mount_offset"] = nullptr;  // null: the default, as for the other optional fields
+    CHECK(certipose::parse_camera_task(j.dump()).mount_offset == std::array<double, 3>{});
+    j["camera"]["mount_offset"] = {0.01, -0.02, 0.1 / 3};
+    const auto in = certipose::parse_camera_task(j.dump());
+    CHECK(in.mount_offset == std::array<double, 3>{0.01, -0.02, 0.1 / 3});
+    json p = pinhole_json();
+    p["camera"]["mount_offset"] = {0, 0, -0.0};  // −0 reads as +0: the same point
+    const auto pin = certipose::parse_camera_task(p.dump());
+    CHECK(pin.mount_offset == std::array<double, 3>{});
+    CHECK_FALSE(std::signbit(pin.mount_offset[2]));
+
+    // camera_task_to_json writes it back (when not zero).
+    const auto back = certipose::parse_camera_task(certipose::json_text(certipose::camera_task_to_json(in)));
+    CHECK(back.mount_offset == in.mount_offset);
+    CHECK_FALSE(certipose::camera_task_to_json(pin)["camera"].contains("mount_offset"));
+
+    // The result document of the input keeps it; the result JSON writes and reads it exactly.
+    certipose::solve_result<I> result;
+    result.facet_index = 3;
+    const certipose::result_document doc = certipose::make_result_document(result, tetrahedron(), in, {});
+    CHECK(doc.camera.mount_offset == in.mount_offset);
+    const auto raw = certipose::result_to_json(doc);
+    CHECK(raw["camera"]["mount_offset"] == json::array({0.01, -0.02, 0.1 / 3}));
+    CHECK(certipose::parse_result_json(certipose::json_text(raw)).camera == doc.camera);
+    auto other = doc;
+    other.camera.mount_offset[1] = std::nextafter(-0.02, 0.0);
+    CHECK_FALSE(other.camera == doc.camera);
+
+    // Bad values name the path.
+    j["camera"]["mount_offset"] = {0.01, 0.02};
+    expect_input_error(j, "camera.mount_offset", "expected an array of 3 numbers, got an array of 2");
+    j["camera"]["mount_offset"] = {0.01, "0.02", 0};
+    expect_input_error(j, "camera.mount_offset[1]", "expected a number, got string \"0.02\"");
+    p["camera"]["mount_offset"] = "front";
+    expect_input_error(p, "camera.mount_offset", "expected an array of 3 numbers");
+    auto r = raw;
+    r["camera"]["mount_offset"] = {0, 0};
+    CHECK_THROWS_WITH_AS((void)certipose::parse_result_json(r.dump()),
+                         "camera.mount_offset: expected an array of 3 numbers, got an array of 2", certipose::invalid_argument);
+    // Not finite: only from a document built in code (JSON text cannot hold it).
+    json nan_offset = design_json();
+    nan_offset["camera"]["mount_offset"] = {0.0, std::nan(""), 0.0};
+    CHECK_THROWS_WITH_AS((void)certipose::camera_task_from_json(nan_offset),
+                         doctest::Contains("camera.mount_offset[1]: must be a finite number of metres"), certipose::invalid_argument);
 }
 
 // ==== atomic writes ==============================================================================

@@ -1,6 +1,6 @@
 // Tests for the orientation module (include/certipose/orientation/): certify_fov is sound and
 // decisive on obvious cases, both policies model OrientationPolicy, and every pose sampled
-// inside every certified 6D box satisfies constraint 5 of DESIGN.md §3 by plain double
+// inside every certified 6D box satisfies constraint 5 of docs/conventions.md by plain double
 // evaluation (R built from elementary rotations, K projection, all three vertices in front and
 // inside the image) — over many random facets and position boxes, including aims straight down
 // and straight up the z axis (the ZXZ singularity). tests/cgal/orientation_cgal.cpp runs the
@@ -36,7 +36,7 @@ namespace orientation_test {
 using namespace certipose;
 constexpr double pi = std::numbers::pi;
 
-// The camera of DESIGN.md §6.
+// The case-study camera (examples/data/camera.json).
 inline thin_lens_camera design_camera() {
     return thin_lens_camera({.focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6, .max_blur_circle = 6.9e-6,
                              .pixel_pitch = 3.45e-6, .width_px = 2448, .height_px = 2048});
@@ -54,7 +54,7 @@ inline facet make_facet(const Eigen::Vector3d& a, const Eigen::Vector3d& b, cons
     return f;
 }
 
-// ---- the independent oracle: plain double, written from DESIGN.md §2 ---------------------------
+// ---- the independent oracle: plain double, written from docs/conventions.md -----------------------
 inline Eigen::Matrix3d rot_z(double a) {
     Eigen::Matrix3d m;
     m << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
@@ -766,7 +766,7 @@ TEST_CASE("orientation: bad input throws naming the field, degenerate input is h
     CHECK(paper_orientation{}.orient(at_centroid, f, cam, 0.38).boxes.empty());
 }
 
-TEST_CASE("fov_frustum: cones of the DESIGN.md camera") {
+TEST_CASE("fov_frustum: cones of the case-study camera") {
     using I = boost_interval;
     const auto cam = design_camera();
     const fov_frustum<I> frustum(cam);

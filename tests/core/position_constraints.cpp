@@ -1,4 +1,4 @@
-// The paper's position constraints (DESIGN.md §3, constraints 1–4) and the position stage:
+// The paper's position constraints (constraints 1–4 of docs/conventions.md) and the position stage:
 // VALID boxes hold only valid positions, discarded regions only invalid ones, by an independent
 // plain-double evaluator (verify/point_check.hpp). Occlusion is off here (no CGAL in this
 // executable); the occlusion policies have their own suite in tests/cgal.

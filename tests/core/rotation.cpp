@@ -39,7 +39,7 @@ struct rng {
     int integer(int a, int b) { return std::uniform_int_distribution<int>(a, b)(e); }
 };
 
-// K of the DESIGN.md §6 camera: f_px = 0.012 / 3.45e-6, centred principal point, no skew.
+// K of the case-study camera: f_px = 0.012 / 3.45e-6, centred principal point, no skew.
 Eigen::Matrix3d design_k() {
     const double f = 0.012 / 3.45e-6;
     Eigen::Matrix3d k;
@@ -89,7 +89,7 @@ TEST_CASE("zxz_rotation is a rotation equal to Rz(φ)·Rx(γ)·Rz(β), with R·�
                                                .toRotationMatrix();
         worst_product = std::max(worst_product, (R - elementary).cwiseAbs().maxCoeff());
         const Eigen::Vector3d closed(std::sin(phi) * std::sin(gamma), -std::cos(phi) * std::sin(gamma), std::cos(gamma));
-        // DESIGN.md §2: R·ẑ = (sin φ sin γ, −cos φ sin γ, cos γ), exactly as optical_axis computes it.
+        // docs/conventions.md: R·ẑ = (sin φ sin γ, −cos φ sin γ, cos γ), exactly as optical_axis computes it.
         if (!(optical_axis(phi, gamma) == closed) || (R * Eigen::Vector3d::UnitZ() - closed).cwiseAbs().maxCoeff() > 1e-15)
             ++axis_mismatches;
     }
@@ -182,7 +182,7 @@ TEST_CASE("a point in front of the camera projects where the intrinsics say") {
     // Behind the camera.
     CHECK_FALSE(certipose::in_front(certipose::world_to_camera(R, p, Eigen::Vector3d(0, 0, 1.5))));
 
-    // K must have the pinhole form of DESIGN.md §2.
+    // K must have the pinhole form of docs/conventions.md.
     Eigen::Matrix3d bad = K;
     bad(2, 2) = 2.0;
     try {

@@ -1,4 +1,4 @@
-// libFuzzer harness of the camera/task JSON reader (DESIGN.md §6 input): parse_camera_task
+// libFuzzer harness of the camera/task JSON reader (docs/io.md): parse_camera_task
 // returns a camera and a task whose values passed validation, or throws a certipose::error.
 #include "harness.hpp"
 

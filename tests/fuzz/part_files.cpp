@@ -1,4 +1,4 @@
-// libFuzzer harness of the whole-part output readers (DESIGN.md §6, certipose-part): the bytes are
+// libFuzzer harness of the whole-part output readers (docs/part.md, certipose-part): the bytes are
 // read as a summary.json (part_summary_from_json) and as a boxes.jsonl file (read_boxes_jsonl,
 // which reads line by line from a file); each returns what it read or throws a certipose::error.
 #include "harness.hpp"

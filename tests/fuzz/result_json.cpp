@@ -1,4 +1,4 @@
-// libFuzzer harness of the result-document reader (certipose-solve's result JSON, DESIGN.md §6):
+// libFuzzer harness of the result-document reader (certipose-solve's result JSON, docs/io.md):
 // parse_result_json returns a document that writes back out, or throws a certipose::error.
 #include "harness.hpp"
 

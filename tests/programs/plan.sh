@@ -5,7 +5,8 @@
 # The plan is written with its PLY, refuses to overwrite an input or to plan from a run of
 # another scale, mesh or camera (d_min one bit off), rejects contradictory options with exit 2,
 # has a one-shot mode honouring --cameras, and certipose-verify certifies the plan's boxes and
-# the tolerance of an exact pose.
+# the tolerance of an exact pose, and the same facets from the pose given as a quaternion or a 4x4
+# matrix; every JSON written leads with its format and version; another mount offset is refused.
 set -uo pipefail
 part=$1 plan=$2 verify=$3 mesh=$4 camera=$5 work=$6
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
@@ -82,4 +83,50 @@ echo "{\"poses\": [$nominal]}" > poses.json
 "$verify" --mesh "$mesh" --camera "$camera" --poses poses.json >vout 2>err || fail "certipose-verify (exact pose) failed: $(cat err)"
 grep -q 'tolerance +-' vout || fail "no tolerance box for an exact pose: $(cat vout)"
 "$verify" --mesh "$mesh" --camera "$camera" --poses poses.json --out poses.json 2>err && fail "verify overwrote its input"
+
+# Every JSON document written leads with its format and version.
+for f in plan.json:certipose-plan run/summary.json:certipose-part-summary report.json:certipose-verify-report; do
+    head -3 "${f%%:*}" | tr -d '\n' | grep -Eq '^\{ *"format": "'"${f#*:}"'", *"version": 1,' \
+        || fail "${f%%:*} does not start with \"format\": \"${f#*:}\", \"version\": 1"
+done
+
+# The plan's nominal pose given as a quaternion and as a 4x4 camera-to-world matrix (converted to
+# ZXZ angles, boxes of +-1e-8 rad) certifies the same facets as its exact ZXZ angles.
+python3 -c 'import json, math, sys
+x, y, z, phi, gamma, beta = json.loads(sys.argv[1])
+sp, cp, sg, cg, sb, cb = math.sin(phi), math.cos(phi), math.sin(gamma), math.cos(gamma), math.sin(beta), math.cos(beta)
+r = [[cp * cb - sp * cg * sb, -cp * sb - sp * cg * cb, sp * sg],
+     [sp * cb + cp * cg * sb, cp * cg * cb - sp * sb, -cp * sg],
+     [sg * sb, sg * cb, cg]]
+h = math.sin(gamma / 2), math.cos(gamma / 2)
+q = [h[0] * math.cos((phi - beta) / 2), h[0] * math.sin((phi - beta) / 2), h[1] * math.sin((phi + beta) / 2),
+     h[1] * math.cos((phi + beta) / 2)]
+m = [r[0] + [x], r[1] + [y], r[2] + [z], [0, 0, 0, 1]]
+json.dump({"poses": [[x, y, z, phi, gamma, beta], {"position": [x, y, z], "quaternion": q}, {"matrix": m}]},
+          open("forms.json", "w"))' "$nominal" || fail "could not write forms.json"
+"$verify" --mesh "$mesh" --camera "$camera" --poses forms.json --out forms_report.json >vout 2>err \
+    || fail "certipose-verify (quaternion, matrix) failed: $(cat err)"
+grep -q 'pose 1 (quaternion): [1-9][0-9]* facets certified' vout || fail "the quaternion pose certifies nothing: $(cat vout)"
+grep -q 'pose 2 (matrix): [1-9][0-9]* facets certified' vout || fail "the matrix pose certifies nothing: $(cat vout)"
+grep -q 'pose 1 (quaternion).*tolerance +-' vout || fail "no tolerance box for a quaternion pose: $(cat vout)"
+python3 -c 'import json, sys
+p = json.load(open("forms_report.json"))["poses"]
+assert [e["kind"] for e in p] == ["pose", "quaternion", "matrix"], [e["kind"] for e in p]
+assert p[0]["facets"] and p[1]["facets"] == p[0]["facets"] and p[2]["facets"] == p[0]["facets"], [e["facets"] for e in p]' \
+    || fail "quaternion / matrix poses certify other facets than the ZXZ pose"
+# At the gimbal lock (optical axis along world -Z) a quaternion is refused: give ZXZ angles.
+echo '{"poses": [{"position": [0, 0, 1], "quaternion": [1, 0, 0, 0]}]}' > lock.json
+"$verify" --mesh "$mesh" --camera "$camera" --poses lock.json 2>err
+[ $? -eq 1 ] || fail "a quaternion at the gimbal lock: expected exit 1"
+grep -q 'poses\[0\].quaternion: the orientation is at the ZXZ gimbal lock' err || fail "the gimbal lock is not named: $(cat err)"
+
+# A camera of another mount offset is another installation: a run of the camera without one is refused.
+python3 -c 'import json, sys
+c = json.load(open(sys.argv[1]))
+c["camera"]["mount_offset"] = [0.0, 0.02, -0.05]
+json.dump(c, open("mounted.json", "w"))' "$camera" || fail "could not write mounted.json"
+"$plan" --mesh "$mesh" --camera mounted.json --part-results run --out m.json 2>err
+[ $? -eq 1 ] || fail "planning with another mount offset: expected exit 1"
+grep -q 'camera.mount_offset (\[0, 0, 0\]) is not this plan.s (\[0, 0.02, -0.05\])' err || fail "the mount offset mismatch is not named: $(cat err)"
+[ -e m.json ] && fail "a failed run wrote its output"
 exit 0

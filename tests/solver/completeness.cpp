@@ -22,7 +22,7 @@ struct reference_case {
     const char* camera;
 };
 
-// ../shared/cases/README.md
+// The reference cases of docs/completeness.md#the-reference-cases (data: ../shared/cases).
 constexpr reference_case cases[] = {{"idler_riser.off", 0.0994878, 102, "camera.json"},
                                     {"featuretype.off", 0.0694832, 3262, "camera.json"},
                                     {"angle_block.off", 0.186104, 520, "camera_wide.json"},
@@ -191,7 +191,7 @@ TEST_CASE("largest_box_around: a certified box around a valid pose, or nothing")
     const verify::camera_view view{lc.camera.intrinsics(), lc.camera.width_px(), lc.camera.height_px(), range.min, range.max};
     std::size_t boxes = 0, violations = 0, samples = 0;
     for (const auto& p : truth.valid) {
-        // The nominal aim (DESIGN.md §4): the optical axis through the facet's centroid, β = 0.
+        // The nominal aim (docs/orientation.md): the optical axis through the facet's centroid, β = 0.
         const Eigen::Vector3d d = (f.centroid - p).normalized();
         const std::array<double, 6> pose{p.x(), p.y(), p.z(), std::atan2(d.x(), -d.y()), std::acos(d.z()), 0.0};
         const auto b = solver.largest_box_around(lc.facet, pose);

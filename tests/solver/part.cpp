@@ -162,7 +162,7 @@ TEST_CASE("part: a facet that hits its budget keeps its certified VALID boxes, a
 }
 
 TEST_CASE("part: facets no pose can inspect are skipped with the reason, and the solver agrees") {
-    // A cube with 1.5 m edges: no face fits the DESIGN.md camera's image from within d_max = 0.77 m.
+    // A cube with 1.5 m edges: no face fits the case-study camera's image from within d_max = 0.77 m.
     std::vector<Eigen::Vector3d> v;
     for (int k = 0; k < 8; ++k) v.emplace_back(k & 1 ? 1.5 : 0.0, k & 2 ? 1.5 : 0.0, k & 4 ? 1.5 : 0.0);
     const triangle_mesh cube(v, {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},

@@ -1,5 +1,5 @@
 // The whole pipeline (paper Algorithm 3): random poses inside every VALID 6D box of the case
-// study and of two real meshes satisfy every constraint of DESIGN.md §3; inputs, budgets and
+// study and of two real meshes satisfy every constraint of docs/conventions.md; inputs, budgets and
 // cancellation.
 #include "solver_support.hpp"
 

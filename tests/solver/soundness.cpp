@@ -29,8 +29,8 @@ namespace {
 using I = boost_interval;
 using case_solver = pose_solver<with_camera<calibrated_camera>>;
 
-/// A mesh of ../shared/meshes (with its scale and camera from ../shared/cases), or the sample
-/// part (the case study) when `mesh` is empty.
+/// A reference case (docs/completeness.md#the-reference-cases; its mesh from ../shared/meshes, its
+/// camera from ../shared/cases), or the sample part (the case study) when `mesh` is empty.
 struct matrix_case {
     const char* mesh;
     double scale;

@@ -1,7 +1,7 @@
 // certipose/camera/camera_model.hpp — what the solver needs to know about a camera.
 //
 // A camera model gives the intrinsic matrix K = [[f_px, s, c_x], [0, δ·f_px, c_y], [0, 0, 1]]
-// (DESIGN.md §2, paper §4), the image size in pixels, the field-of-view half-angles about the
+// (docs/conventions.md, paper §4), the image size in pixels, the field-of-view half-angles about the
 // optical axis and the range [d_min, d_max] of object distances (metres) at which the part is
 // imaged usably (in focus for a thin lens, user bounds for a pinhole). The solver certifies pose
 // boxes against [d_min, d_max], so a model must return a range CONTAINED in the true one: erring
@@ -43,7 +43,7 @@ struct distance_range {
     bool contains(double l) const noexcept { return min <= l && l <= max; }
 };
 
-/// A camera the solver can place (DESIGN.md §5, "camera model" policy).
+/// A camera the solver can place (the camera-model policy, docs/camera.md).
 template <class C>
 concept CameraModel = requires(const C& c) {
     { c.intrinsics() } -> std::convertible_to<Eigen::Matrix3d>;
@@ -166,7 +166,7 @@ private:
 
 /// `c.distance_range()` with the optional resolution requirement applied: when
 /// `max_metres_per_pixel` = r is given, a point at distance l seen head-on spans l / f_px metres
-/// per pixel, so max is capped at r · f_px (DESIGN.md §2; obliquity is the viewing-angle
+/// per pixel, so max is capped at r · f_px (docs/conventions.md; obliquity is the viewing-angle
 /// constraint's job). f_px is read from K(0,0) and the product is rounded DOWN so the cap is
 /// never above the exact r · f_px, even when K(0,0) itself was rounded from focal_length /
 /// pixel_pitch. r = +infinity or std::nullopt means no cap. The result may be empty.

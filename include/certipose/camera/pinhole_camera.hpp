@@ -1,7 +1,7 @@
 // certipose/camera/pinhole_camera.hpp — an ideal pinhole camera with user distance bounds.
 //
 // `pinhole_camera` has the same intrinsics and field of view as `thin_lens_camera` (K from focal
-// length, pixel pitch, principal point, skew and aspect; DESIGN.md §2) but no depth of field:
+// length, pixel pitch, principal point, skew and aspect; docs/camera.md) but no depth of field:
 // the usable object distances [d_min, d_max] are whatever the user states (working distance of a
 // fixture, a telecentric stand-off, a focus range measured on the real lens). Those bounds are
 // returned exactly as given, so they are the user's responsibility. d_max may be +infinity.

@@ -1,6 +1,6 @@
 // certipose/camera/thin_lens_camera.hpp — the paper's camera: a thin lens with depth of field.
 //
-// `thin_lens_camera` is the default CameraModel (paper §4, DESIGN.md §2). Built from a
+// `thin_lens_camera` is the default CameraModel (paper §4, docs/camera.md). Built from a
 // `thin_lens_parameters` aggregate (designated initialisers; metres and pixels), it gives K, the
 // FOV half-angles, the thin-lens quantities of paper Eqs. 1–7 (aperture diameter, image distance,
 // blur circle, blur angle) and the in-focus distance range [d_min, d_max]: the object distances l
@@ -129,7 +129,7 @@ private:
     //   near (l <= s): (s − l)/l = k  =>  l = s / (1 + k) = s (H − f) / (H + s − 2f) = D_n
     //   far  (l >= s): (l − s)/l = k  =>  l = s / (1 − k) = s (H − f) / (H − s)     = D_f,
     // and for k >= 1 (s >= H) c never exceeds b beyond s: D_f = +inf. These are the classical
-    // hyperfocal near/far limits (DESIGN.md §2); tests/core/camera.cpp checks c(D_n) = c(D_f) = b.
+    // hyperfocal near/far limits (docs/camera.md); tests/core/camera.cpp checks c(D_n) = c(D_f) = b.
     //
     // Why the nudges. The solver certifies ||p − q|| ∈ [d_min, d_max], so d_min must not be
     // below D_n and d_max not above D_f, or a box could be called VALID while a pose in it sees

@@ -1,5 +1,5 @@
 // certipose/constraints/box_triangle_distance.hpp — certified bounds on the distance between an
-// axis-aligned box and a triangle, for the focus constraint d_min ≤ ‖p − q‖ (DESIGN.md §3.2).
+// axis-aligned box and a triangle, for the focus constraint d_min ≤ ‖p − q‖ (constraint 2, docs/conventions.md).
 //
 // The minimum over the facet of ‖p − q‖ is the point–triangle distance, not a polynomial, so it
 // is bounded rather than contracted. Lower bound: for ANY direction u, the box and the triangle

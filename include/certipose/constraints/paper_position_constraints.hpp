@@ -1,5 +1,5 @@
 // certipose/constraints/paper_position_constraints.hpp — the paper's position constraints for
-// one facet (§6.2; DESIGN.md §3 constraints 1–4), as a contractor and a box test.
+// one facet (§6.2; constraints 1–4 of docs/conventions.md), as a contractor and a box test.
 //
 // For every p in the box and every point q of the facet:
 //   C_f       the box does not meet the facet,

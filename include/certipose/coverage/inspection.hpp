@@ -1,6 +1,6 @@
 // certipose/coverage/inspection.hpp — which facets a 6D pose box inspects: C(B), the facets
 // certified inspected from every pose of the box, and P(B) ⊇ C(B), the facets not proven
-// impossible (DESIGN.md §7, "Coverage with guarantees").
+// impossible (docs/coverage.md).
 //
 // `facet_inspector` holds, for one solver (part, camera, task, occlusion scene), each facet's
 // position constraint set, built the first time a box needs it. `inspect(box)` goes through the

@@ -3,7 +3,7 @@
 // A `vec3` is not a node: it is three expressions side by side, and `dot`/`cross` expand into
 // ordinary trees (`dot(u, v)` is `u.x*v.x + u.y*v.y + u.z*v.z`). That keeps forward/backward
 // exactly the scalar rules, and lets constraints such as the viewing angle
-// `(p − c)·n ≥ sin(θ_v)·‖p − c‖` (DESIGN.md §3.4) be written as in the paper.
+// `(p − c)·n ≥ sin(θ_v)·‖p − c‖` (constraint 4, docs/conventions.md) be written as in the paper.
 #pragma once
 
 #include <utility>

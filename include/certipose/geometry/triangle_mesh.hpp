@@ -5,7 +5,7 @@
 // coordinates, face indices in range, three distinct indices per face and no degenerate face
 // (the rule is in `triangle_mesh`'s comment). Each face's derived data — vertices, outward unit
 // normal (right-hand rule v1 → v2 → v3, paper §2), centroid, bounding box, area — is computed
-// once into a `certipose::facet`, which is what the constraints of DESIGN.md §3 consume.
+// once into a `certipose::facet`, which is what the constraints (docs/conventions.md) consume.
 // Topology is NOT required by the constructor (a soup is a valid mesh); `validate_closed_manifold`
 // is the check the occlusion policies call, and `welded` merges the duplicated vertices of STL
 // soups. `scaled`, `translated` and `rescaled_to_diagonal` bring CAD units (the shared meshes

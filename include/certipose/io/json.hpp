@@ -1,4 +1,4 @@
-// certipose/io/json.hpp — the JSON files of DESIGN.md §6: the camera/task input and the result.
+// certipose/io/json.hpp — the JSON files of docs/io.md: the camera/task input and the result.
 //
 // Needs nlohmann-json (Debian nlohmann-json3-dev, CMake target nlohmann_json::nlohmann_json);
 // no other certipose header includes it, so the core stays free of it. No CGAL.
@@ -9,7 +9,7 @@
 // certipose::invalid_argument whose field() is that path; a value the camera or the task
 // rejects (negative focal length, ...) is the camera's own invalid_argument re-thrown with the
 // path ("camera.focal_length"); bad JSON syntax is certipose::io_error with nlohmann's line and
-// column. Output (`write_result_json`): the result JSON of DESIGN.md §6, written atomically,
+// column. Output (`write_result_json`): the result JSON of docs/io.md, written atomically,
 // doubles in round-trip precision (nlohmann's shortest-round-trip formatting), one box per
 // line. Its reader (`read_result_json`) returns plain doubles and, since the contract allows
 // extra fields, ignores fields it does not know. Field-by-field description: docs/io.md.
@@ -67,10 +67,13 @@ inline calibrated_camera calibrated(const any_camera& camera) {
     return std::visit([&](const auto& c) { return calibrated_camera(c, model_name(camera)); }, camera);
 }
 
-/// The camera/task input JSON of DESIGN.md §6.
+/// The camera/task input JSON (docs/io.md; conventions: docs/conventions.md).
 struct camera_task {
     any_camera camera;
     inspection_task task;
+    /// "camera.mount_offset": the projection centre in the mount frame (axes: the camera's
+    /// optical frame; origin: the mount point), metres; zero when the file gives none.
+    std::array<double, 3> mount_offset{};
 
     /// `certipose::calibrated(camera)`.
     calibrated_camera calibrated() const { return certipose::calibrated(camera); }
@@ -297,7 +300,7 @@ inline ordered_json finite(double v, const std::string& path) {
     return v;
 }
 
-/// An integral double (image sizes) as a JSON integer, as in DESIGN.md §6; others as doubles.
+/// An integral double (image sizes) as a JSON integer, as in docs/io.md; others as doubles.
 inline ordered_json integral_or_double(double v, const std::string& path) {
     if (std::isfinite(v) && v == std::trunc(v) && std::abs(v) < 9007199254740992.0)
         return static_cast<std::int64_t>(v);
@@ -356,11 +359,59 @@ inline std::optional<termination> termination_from_string(std::string_view s) {
     return std::nullopt;
 }
 
+// ---- format and version ---------------------------------------------------------------------
+
+/// The "format" names of the documents the programs write, and the one "version" this build
+/// reads and writes. A document without "format" or "version" is read as this version.
+inline constexpr const char* result_format = "certipose-result";
+inline constexpr const char* part_summary_format = "certipose-part-summary";
+inline constexpr const char* plan_format = "certipose-plan";
+inline constexpr int format_version = 1;
+
+/// A JSON value as it appears in the file, shortened: "certipose-result" (quoted), 2, an object.
+inline std::string value_text(const json& j) {
+    if (!j.is_string() && !j.is_number() && !j.is_boolean()) return describe(j);
+    std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
+    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    return text;
+}
+
+/// Refuses a "version" other than 1 (absent: version 1). Throws invalid_argument("version").
+inline void check_version(const json& j) {
+    const json* v = j.is_object() ? find(j, "version") : nullptr;
+    if (!v || (v->is_number() && v->get<double>() == double(format_version))) return;
+    throw invalid_argument("version", printable("\"version\": " + value_text(*v) + " is not supported (this build reads version " +
+                                                std::to_string(format_version) + ")"));
+}
+
+/// Refuses a "format" other than `format` (absent: accepted), then checks "version".
+/// Throws invalid_argument("format") / ("version").
+inline void check_format(const json& j, std::string_view format) {
+    if (const json* f = j.is_object() ? find(j, "format") : nullptr;
+        f && !(f->is_string() && f->get<std::string>() == format))
+        throw invalid_argument("format", printable("\"format\": " + value_text(*f) + " is not supported here (expected \"" +
+                                                   std::string(format) + "\")"));
+    check_version(j);
+}
+
+/// "camera.mount_offset": absent or null is zero; else 3 finite numbers (−0 read as +0).
+inline std::array<double, 3> mount_offset_from_json(const json& camera, const std::string& path) {
+    const json* v = find(camera, "mount_offset");
+    if (!v || v->is_null()) return {};
+    const std::string where = child(path, "mount_offset");
+    std::array<double, 3> a = as_numbers<3>(*v, where);
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (!std::isfinite(a[i])) fail(element(where, i), "must be a finite number of metres, got " + detail::format_double(a[i]));
+        a[i] += 0.0;  // -0 → +0: the same point, written the same way
+    }
+    return a;
+}
+
 }  // namespace detail::json_io
 
 // ==== camera/task input ========================================================================
 
-/// The "camera" object of the input JSON (DESIGN.md §6; all fields in docs/io.md). `path` is
+/// The "camera" object of the input JSON (all fields in docs/io.md). `path` is
 /// the JSON path used in error messages.
 inline any_camera camera_from_json(const nlohmann::json& j, const std::string& path = "camera") {
     using namespace detail::json_io;
@@ -390,8 +441,9 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
         reject_unknown(j, path,
                        {"model", "focal_length", "f_stop", "focus_distance", "max_blur_circle",
                         "pixel_pitch", "width_px", "height_px", "principal_point_px", "skew",
-                        "aspect"},
+                        "aspect", "mount_offset"},
                        "thin_lens camera");
+        (void)mount_offset_from_json(j, path);  // not the model's: camera_task keeps it
         thin_lens_parameters p;
         read_sensor(p);
         p.f_stop = required_number(j, path, "f_stop");
@@ -402,8 +454,9 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
     if (model == "pinhole") {
         reject_unknown(j, path,
                        {"model", "focal_length", "pixel_pitch", "width_px", "height_px",
-                        "principal_point_px", "skew", "aspect", "d_min", "d_max"},
+                        "principal_point_px", "skew", "aspect", "d_min", "d_max", "mount_offset"},
                        "pinhole camera");
+        (void)mount_offset_from_json(j, path);
         pinhole_parameters p;
         read_sensor(p);
         // A pinhole has no depth of field, so the working distances must be stated; d_max may
@@ -434,14 +487,17 @@ inline inspection_task task_from_json(const nlohmann::json& j, const std::string
     return t;
 }
 
-/// The whole input document {"camera": {...}, "task": {...}}; both members are required.
+/// The whole input document {"version": 1, "camera": {...}, "task": {...}}; camera and task are
+/// required, "version" is optional (1 is the only one).
 inline camera_task camera_task_from_json(const nlohmann::json& j) {
     using namespace detail::json_io;
     require_object(j, "");
-    reject_unknown(j, "", {"camera", "task"}, "top-level");
-    any_camera camera = camera_from_json(require(j, "", "camera", "an object"), "camera");
+    reject_unknown(j, "", {"version", "camera", "task"}, "top-level");
+    check_version(j);
+    const json& camera_json = require(j, "", "camera", "an object");
+    any_camera camera = camera_from_json(camera_json, "camera");
     inspection_task task = task_from_json(require(j, "", "task", "an object"), "task");
-    return {std::move(camera), task};
+    return {std::move(camera), task, mount_offset_from_json(camera_json, "camera")};
 }
 
 /// Parses the input JSON from text. `source` (a file name) prefixes messages and is the
@@ -490,6 +546,7 @@ inline nlohmann::ordered_json camera_task_to_json(const camera_task& in) {
         cam["d_min"] = finite(p.distance_range().min, "camera.d_min");
         cam["d_max"] = finite_or_unbounded(p.distance_range().max, "camera.d_max");
     }
+    if (in.mount_offset != std::array<double, 3>{}) cam["mount_offset"] = numbers(in.mount_offset, "camera.mount_offset");
     ordered_json task;
     task["min_view_angle"] = finite(in.task.min_view_angle, "task.min_view_angle");
     task["max_metres_per_pixel"] =
@@ -511,7 +568,16 @@ result_document make_result_document(const solve_result<I>& result, const triang
         camera);
 }
 
-/// The result JSON of DESIGN.md §6 (keys in the documented order). Non-finite numbers are an
+/// `make_result_document` for the camera/task input read from JSON, its mount_offset included.
+template <Interval I>
+result_document make_result_document(const solve_result<I>& result, const triangle_mesh& mesh,
+                                     const camera_task& input, const solve_options& options) {
+    result_document d = make_result_document(result, mesh, input.camera, input.task, options);
+    d.camera.mount_offset = input.mount_offset;
+    return d;
+}
+
+/// The result JSON of docs/io.md (keys in the documented order). Non-finite numbers are an
 /// invalid_argument naming the JSON path, except camera.d_max = +inf, written as null. Extra
 /// fields may be added to the returned object before it is written (write_json_file).
 namespace detail::json_io {
@@ -524,7 +590,32 @@ inline ordered_json camera_record_json(const result_document::camera_record& c) 
     camera["K"] = matrix(c.K, "camera.K");
     camera["d_min"] = finite(c.d_min, "camera.d_min");
     camera["d_max"] = finite_or_unbounded(c.d_max, "camera.d_max");
+    // Written only when not zero, so the documents of a camera without one stay as they were.
+    if (c.mount_offset != std::array<double, 3>{}) camera["mount_offset"] = numbers(c.mount_offset, "camera.mount_offset");
     return camera;
+}
+
+/// Reads the "camera" object of the result documents (extra fields ignored).
+inline result_document::camera_record camera_record_from_json(const json& j, const std::string& path = "camera") {
+    result_document::camera_record c;
+    const json& camera = require_object(j, path);
+    c.width_px = required_number(camera, path, "width_px");
+    c.height_px = required_number(camera, path, "height_px");
+    c.K = as_matrix<3, 3>(require(camera, path, "K", "a 3x3 matrix"), child(path, "K"));
+    c.d_min = required_number(camera, path, "d_min");
+    const json& d_max = require(camera, path, "d_max", "a number, or null for unbounded");
+    c.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity() : as_number(d_max, child(path, "d_max"));
+    c.mount_offset = mount_offset_from_json(camera, path);
+    return c;
+}
+
+/// Reads the "task" object of the result documents (extra fields ignored).
+inline result_document::task_record task_record_from_json(const json& j, const std::string& path = "task") {
+    result_document::task_record t;
+    const json& task = require_object(j, path);
+    t.min_view_angle = required_number(task, path, "min_view_angle");
+    t.max_metres_per_pixel = optional_number(task, path, "max_metres_per_pixel");
+    return t;
 }
 
 /// The "task" object of the result documents.
@@ -535,6 +626,86 @@ inline ordered_json task_record_json(const result_document::task_record& t) {
                                        ? finite_or_unbounded(*t.max_metres_per_pixel, "task.max_metres_per_pixel")
                                        : ordered_json(nullptr);
     return task;
+}
+
+/// Adds "occluders", "keep_in" and "keep_out" (io/scene_record.hpp) to a document, each an
+/// array (empty when there are none).
+inline void put_scene(ordered_json& j, const scene_record& s) {
+    ordered_json occluders = ordered_json::array();
+    for (std::size_t i = 0; i < s.occluders.size(); ++i) {
+        const occluder_record& o = s.occluders[i];
+        ordered_json r;
+        r["path"] = o.path;
+        r["scale"] = finite(o.scale, child(element("occluders", i), "scale"));
+        r["faces"] = o.faces;
+        r["digest"] = o.digest;
+        occluders.push_back(std::move(r));
+    }
+    j["occluders"] = std::move(occluders);
+    const auto regions = [](const std::vector<camera_region>& list, const std::string& key) {
+        ordered_json out = ordered_json::array();
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            ordered_json numbers = ordered_json::array();
+            for (double v : list[i].numbers()) numbers.push_back(finite(v, element(key, i)));
+            ordered_json r;
+            r[list[i].name()] = std::move(numbers);
+            out.push_back(std::move(r));
+        }
+        return out;
+    };
+    j["keep_in"] = regions(s.regions.keep_in, "keep_in");
+    j["keep_out"] = regions(s.regions.keep_out, "keep_out");
+}
+
+/// Reads "occluders", "keep_in" and "keep_out" of a document; absent (or null) ones are empty.
+/// Throws invalid_argument naming the JSON path ("keep_out[1].box", "occluders[0].digest") of a
+/// malformed entry or an invalid region.
+inline scene_record scene_from_json(const json& j) {
+    scene_record s;
+    const auto array = [&](std::string_view key) -> const json* {
+        const json* list = find(j, key);
+        if (!list || list->is_null()) return nullptr;
+        if (!list->is_array()) fail(std::string(key), "expected an array, got " + describe(*list));
+        return list;
+    };
+    if (const json* list = array("occluders"))
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            const std::string path = element("occluders", i);
+            const json& o = require_object((*list)[i], path);
+            occluder_record r;
+            r.path = as_string(require(o, path, "path", "a string"), child(path, "path"), "a string");
+            r.scale = required_number(o, path, "scale");
+            if (!(r.scale > 0.0) || !std::isfinite(r.scale))
+                fail(child(path, "scale"), "expected a positive finite factor, got " + detail::format_double(r.scale));
+            r.faces = as_count(require(o, path, "faces", "an integer"), child(path, "faces"));
+            r.digest = as_string(require(o, path, "digest", "a string"), child(path, "digest"), "a string");
+            s.occluders.push_back(std::move(r));
+        }
+    const auto regions = [&](std::string_view key, std::vector<camera_region>& out) {
+        const json* list = array(key);
+        if (!list) return;
+        for (std::size_t i = 0; i < list->size(); ++i) {
+            const std::string path = element(std::string(key), i);
+            const json& e = require_object((*list)[i], path);
+            const char* expected = "expected {\"box\": [xmin, ymin, zmin, xmax, ymax, zmax]} or {\"sphere\": [x, y, z, r]}";
+            if (e.size() != 1) fail(path, expected);
+            camera_region r;
+            if (const json* b = find(e, "box")) {
+                const auto v = as_numbers<6>(*b, child(path, "box"));
+                r = camera_region::box({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
+            } else if (const json* b = find(e, "sphere")) {
+                const auto v = as_numbers<4>(*b, child(path, "sphere"));
+                r = camera_region::sphere({v[0], v[1], v[2]}, v[3]);
+            } else {
+                fail(path, expected);
+            }
+            r.validate(path);
+            out.push_back(r);
+        }
+    };
+    regions("keep_in", s.regions.keep_in);
+    regions("keep_out", s.regions.keep_out);
+    return s;
 }
 
 }  // namespace detail::json_io
@@ -601,10 +772,13 @@ inline nlohmann::ordered_json result_to_json(const result_document& d) {
     });
 
     ordered_json j;
+    j["format"] = result_format;
+    j["version"] = format_version;
     j["facet"] = std::move(facet);
     j["camera"] = std::move(camera);
     j["task"] = std::move(task);
     j["settings"] = std::move(settings);
+    put_scene(j, d.scene);
     j["boxes"] = std::move(boxes);
     j["stats"] = std::move(stats);
     return j;
@@ -648,7 +822,7 @@ inline void write_json_file(const std::filesystem::path& path, const nlohmann::o
     write_file_atomically(path, json_text(j));
 }
 
-/// Writes the result JSON of DESIGN.md §6 atomically.
+/// Writes the result JSON of docs/io.md atomically.
 inline void write_result_json(const std::filesystem::path& path, const result_document& d) {
     write_json_file(path, result_to_json(d));
 }
@@ -663,6 +837,7 @@ inline result_document result_from_json(const nlohmann::json& j) {
     const certipose::detail::round_to_nearest_scope nearest;  // integer → double conversions
     result_document d;
     require_object(j, "");
+    check_format(j, result_format);
 
     const json& facet = require_object(require(j, "", "facet", "an object"), "facet");
     d.facet.index = as_count(require(facet, "facet", "index", "an integer"), "facet.index");
@@ -670,18 +845,8 @@ inline result_document result_from_json(const nlohmann::json& j) {
                                        "facet.vertices");
     d.facet.normal = as_numbers<3>(require(facet, "facet", "normal", "3 numbers"), "facet.normal");
 
-    const json& camera = require_object(require(j, "", "camera", "an object"), "camera");
-    d.camera.width_px = required_number(camera, "camera", "width_px");
-    d.camera.height_px = required_number(camera, "camera", "height_px");
-    d.camera.K = as_matrix<3, 3>(require(camera, "camera", "K", "a 3x3 matrix"), "camera.K");
-    d.camera.d_min = required_number(camera, "camera", "d_min");
-    const json& d_max = require(camera, "camera", "d_max", "a number, or null for unbounded");
-    d.camera.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity()
-                                     : as_number(d_max, "camera.d_max");
-
-    const json& task = require_object(require(j, "", "task", "an object"), "task");
-    d.task.min_view_angle = required_number(task, "task", "min_view_angle");
-    d.task.max_metres_per_pixel = optional_number(task, "task", "max_metres_per_pixel");
+    d.camera = camera_record_from_json(require(j, "", "camera", "an object"));
+    d.task = task_record_from_json(require(j, "", "task", "an object"));
 
     const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
     d.settings.position_eps = required_number(settings, "settings", "position_eps");
@@ -701,6 +866,7 @@ inline result_document result_from_json(const nlohmann::json& j) {
         fail("settings.corner_rest_min_pieces", "must be >= 0, got " + certipose::detail::format_double(d.settings.corner_rest_min_pieces));
     d.settings.refine_min_width = optional_number(settings, "settings", "refine_min_width");
     flag(settings, "settings", "grow", d.settings.grow);
+    d.scene = scene_from_json(j);
 
     const json& boxes = require(j, "", "boxes", "an array");
     if (!boxes.is_array()) fail("boxes", "expected an array, got " + describe(boxes));

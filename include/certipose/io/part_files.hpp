@@ -1,5 +1,5 @@
-// certipose/io/part_files.hpp — the output folder of a whole-part run (DESIGN.md §6, "Whole-part
-// output"): summary.json and boxes.jsonl, written and read. Needs nlohmann-json.
+// certipose/io/part_files.hpp — the output folder of a whole-part run (docs/part.md, "The
+// output folder"): summary.json and boxes.jsonl, written and read. Needs nlohmann-json.
 //
 // boxes.jsonl has one box per line, in facet order then box order:
 //   {"facet": 17, "class": "valid", "position": [[xl,xu],[yl,yu],[zl,zu]], "orientation": [[φl,φu],[γl,γu],[βl,βu]]}
@@ -8,8 +8,10 @@
 // was not checked carry "occlusion": "unchecked". `jsonl_sink` streams lines as facets finish,
 // so memory holds one facet's boxes at a time.
 //
-// summary.json: {"mesh": {"path", "faces", "scale", "digest"}, "camera": {as in the single-facet result},
-// "task", "settings", "facets": [{"index", "valid", "boundary", "seconds", "termination",
+// summary.json: {"format": "certipose-part-summary", "version": 1, "mesh": {"path", "faces", "scale",
+// "digest"}, "camera": {as in the single-facet result},
+// "task", "settings", "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none),
+// "facets": [{"index", "valid", "boundary", "seconds", "termination",
 // "reason" (when skipped), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
 #pragma once
@@ -108,6 +110,7 @@ struct part_summary {
         std::size_t faces = 0;
         double scale = 1.0;
         std::string digest{};  ///< mesh_digest of the mesh the run solved; empty: not recorded
+        friend bool operator==(const mesh_record&, const mesh_record&) = default;
     };
     struct settings_record {
         double position_eps = 0, orientation_eps = 0;
@@ -129,6 +132,8 @@ struct part_summary {
     result_document::camera_record camera;
     result_document::task_record task;
     settings_record settings;
+    /// The run's external occluders and camera regions ("occluders", "keep_in", "keep_out").
+    scene_record scene{};
     std::vector<facet_record> facets;
     totals_record totals;
 };
@@ -140,24 +145,7 @@ inline std::optional<facet_termination> facet_termination_from_string(std::strin
     return std::nullopt;
 }
 
-/// A fingerprint of the mesh a run solved (its scaled vertex coordinates, bit for bit, and its
-/// faces; FNV-1a, 64 bits, as 16 hex digits): a tool reading the run's boxes later checks it is
-/// given the same mesh, not merely one with as many faces.
-inline std::string mesh_digest(const triangle_mesh& m) {
-    std::uint64_t h = 14695981039346656037ULL;
-    const auto mix = [&](std::uint64_t word) {
-        for (int b = 0; b < 8; ++b) h = (h ^ ((word >> (8 * b)) & 0xffU)) * 1099511628211ULL;
-    };
-    mix(m.num_vertices()), mix(m.num_faces());
-    for (const auto& v : m.vertices())
-        for (int k = 0; k < 3; ++k) mix(std::bit_cast<std::uint64_t>(v[k]));
-    for (const auto& f : m.faces())
-        for (auto i : f) mix(static_cast<std::uint64_t>(i));
-    static constexpr char hex[] = "0123456789abcdef";
-    std::string out(16, '0');
-    for (int i = 15; i >= 0; --i, h >>= 4) out[static_cast<std::size_t>(i)] = hex[h & 0xfU];
-    return out;
-}
+// mesh_digest, the fingerprint of "mesh.digest": io/scene_record.hpp.
 
 /// The camera and task records of a document, from the camera the run used.
 template <CameraModel C>
@@ -177,6 +165,8 @@ void describe_camera(part_summary& s, const C& camera, const inspection_task& ta
 inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     using namespace detail::json_io;
     ordered_json j;
+    j["format"] = part_summary_format;
+    j["version"] = format_version;
     j["mesh"] = {{"path", s.mesh.path}, {"faces", s.mesh.faces}, {"scale", finite(s.mesh.scale, "mesh.scale")}};
     if (!s.mesh.digest.empty()) j["mesh"]["digest"] = s.mesh.digest;
     j["camera"] = camera_record_json(s.camera);
@@ -192,6 +182,7 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
                      {"boundary", s.settings.boundary},
                      {"occlusion", s.settings.occlusion},
                      {"occlusion_checked", s.settings.occlusion_checked}};
+    put_scene(j, s.scene);
     ordered_json facets = ordered_json::array();
     for (const facet_record& f : s.facets) {
         ordered_json r;
@@ -224,6 +215,18 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     return j;
 }
 
+/// Reads the "mesh" object of summary.json and PLAN.json: path, faces, scale and, when given, digest.
+inline part_summary::mesh_record mesh_record_from_json(const nlohmann::json& j) {
+    using namespace detail::json_io;
+    part_summary::mesh_record m;
+    const json& mesh = require_object(j, "mesh");
+    m.path = as_string(require(mesh, "mesh", "path", "a string"), "mesh.path", "a string");
+    m.faces = as_count(require(mesh, "mesh", "faces", "an integer"), "mesh.faces");
+    m.scale = required_number(mesh, "mesh", "scale");
+    if (const json* d = find(mesh, "digest")) m.digest = as_string(*d, "mesh.digest", "a string");
+    return m;
+}
+
 /// Reads summary.json back (what part_summary_to_json writes; extra fields are ignored).
 /// Throws invalid_argument naming the JSON path of a missing or wrong field.
 inline part_summary part_summary_from_json(const nlohmann::json& j) {
@@ -231,21 +234,10 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
     const certipose::detail::round_to_nearest_scope nearest;
     part_summary s;
     require_object(j, "");
-    const json& mesh = require_object(require(j, "", "mesh", "an object"), "mesh");
-    s.mesh.path = as_string(require(mesh, "mesh", "path", "a string"), "mesh.path", "a string");
-    s.mesh.faces = as_count(require(mesh, "mesh", "faces", "an integer"), "mesh.faces");
-    s.mesh.scale = required_number(mesh, "mesh", "scale");
-    if (const json* d = find(mesh, "digest")) s.mesh.digest = as_string(*d, "mesh.digest", "a string");
-    const json& camera = require_object(require(j, "", "camera", "an object"), "camera");
-    s.camera.width_px = required_number(camera, "camera", "width_px");
-    s.camera.height_px = required_number(camera, "camera", "height_px");
-    s.camera.K = as_matrix<3, 3>(require(camera, "camera", "K", "a 3x3 matrix"), "camera.K");
-    s.camera.d_min = required_number(camera, "camera", "d_min");
-    const json& d_max = require(camera, "camera", "d_max", "a number, or null for unbounded");
-    s.camera.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity() : as_number(d_max, "camera.d_max");
-    const json& task = require_object(require(j, "", "task", "an object"), "task");
-    s.task.min_view_angle = required_number(task, "task", "min_view_angle");
-    s.task.max_metres_per_pixel = optional_number(task, "task", "max_metres_per_pixel");
+    check_format(j, part_summary_format);
+    s.mesh = mesh_record_from_json(require(j, "", "mesh", "an object"));
+    s.camera = camera_record_from_json(require(j, "", "camera", "an object"));
+    s.task = task_record_from_json(require(j, "", "task", "an object"));
     const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
     s.settings.position_eps = required_number(settings, "settings", "position_eps");
     s.settings.orientation_eps = required_number(settings, "settings", "orientation_eps");
@@ -255,6 +247,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
     if (const json* v = find(settings, "boundary"); v && v->is_boolean()) s.settings.boundary = v->get<bool>();
     if (const json* v = find(settings, "occlusion"); v && v->is_string()) s.settings.occlusion = v->get<std::string>();
     if (const json* v = find(settings, "occlusion_checked"); v && v->is_boolean()) s.settings.occlusion_checked = v->get<bool>();
+    s.scene = scene_from_json(j);
     const json& facets = require(j, "", "facets", "an array");
     if (!facets.is_array()) fail("facets", "expected an array, got " + describe(facets));
     for (std::size_t i = 0; i < facets.size(); ++i) {

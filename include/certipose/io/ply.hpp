@@ -5,7 +5,7 @@
 // vertices, so its colour does not bleed into the neighbouring faces), each box's POSITION box
 // [x]×[y]×[z] as a solid of 12 outward-oriented triangles — VALID green, BOUNDARY yellow — and,
 // optionally, a thin blue "needle" from each box centre along the optical axis of the
-// orientation box's centre (R·ẑ, DESIGN.md §2), i.e. where the camera points.
+// orientation box's centre (R·ẑ, docs/conventions.md), i.e. where the camera points.
 // Colours are stored twice, as uchar red/green/blue on the vertices AND on the faces, because
 // the viewers read different ones: MeshLab shows vertex colours by default and reads face
 // colours; ParaView's vtkPLYReader turns face colours into a cell array "RGB" and vertex colours
@@ -169,7 +169,7 @@ inline std::string ply_text(const triangle_mesh& mesh, std::size_t facet_index,
             for (int d = 0; d < 3; ++d) centre[d] = 0.5 * b.position[d][0] + 0.5 * b.position[d][1];
             const double phi = 0.5 * b.orientation[0][0] + 0.5 * b.orientation[0][1];
             const double gamma = 0.5 * b.orientation[1][0] + 0.5 * b.orientation[1][1];
-            // Optical axis R·ẑ of R = Rz(φ)·Rx(γ)·Rz(β) (DESIGN.md §2); β spins about it.
+            // Optical axis R·ẑ of R = Rz(φ)·Rx(γ)·Rz(β) (docs/conventions.md#zxz-angles); β spins about it.
             const Eigen::Vector3d axis(std::sin(phi) * std::sin(gamma),
                                        -std::cos(phi) * std::sin(gamma), std::cos(gamma));
             double length = opt.aim_length;

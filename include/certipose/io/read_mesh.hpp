@@ -1,7 +1,7 @@
 // certipose/io/read_mesh.hpp — read OFF, OBJ, PLY or STL into a validated triangle_mesh (CGAL).
 //
-// `read_mesh` is how parts and occluders enter the library (DESIGN.md §6: certipose-solve
-// reads OFF, OBJ, PLY or STL). Parsing is CGAL's (CGAL::IO::read_OFF / read_OBJ / read_PLY /
+// `read_mesh` is how parts and occluders enter the library (docs/conventions.md#files: every
+// program reads OFF, OBJ, PLY or STL). Parsing is CGAL's (CGAL::IO::read_OFF / read_OBJ / read_PLY /
 // read_STL, the readers behind read_polygon_soup); this header only chooses the reader from
 // the extension (case-insensitive), turns every failure into a certipose exception naming the
 // path, optionally welds and scales, and builds the triangle_mesh, whose validation rejects

@@ -1,5 +1,5 @@
 // certipose/io/result_document.hpp — a solver result as plain doubles: exactly the content of
-// the result JSON of DESIGN.md §6 (no JSON library, no CGAL).
+// the result JSON of docs/io.md (no JSON library, no CGAL).
 //
 // `result_document` is the bridge between the solver and the files that leave the library: it
 // is what the JSON writer (io/json.hpp) writes, what the JSON reader returns, and what the PLY
@@ -13,6 +13,7 @@
 #include "certipose/camera/camera_model.hpp"
 #include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/interval/concept.hpp"
+#include "certipose/io/scene_record.hpp"
 #include "certipose/solver/result.hpp"
 #include "certipose/solver/task.hpp"
 
@@ -26,17 +27,17 @@ namespace certipose {
 /// [[l0, u0], [l1, u1], [l2, u2]]: a 3D box as interval bounds.
 using bounds_3d = std::array<std::array<double, 2>, 3>;
 
-/// One classified 6D pose box as plain doubles (DESIGN.md §6 "boxes").
+/// One classified 6D pose box as plain doubles (docs/io.md, "boxes").
 struct box_record {
     box_class cls = box_class::valid;
     bounds_3d position{};     ///< [x], [y], [z], metres
-    bounds_3d orientation{};  ///< [φ], [γ], [β], radians (ZXZ, DESIGN.md §2)
+    bounds_3d orientation{};  ///< [φ], [γ], [β], radians (ZXZ, docs/conventions.md)
     /// BOUNDARY boxes: which constraint (or budget) left it undecided (JSON "undecided").
     std::optional<boundary_reason> reason{};
     friend bool operator==(const box_record&, const box_record&) = default;
 };
 
-/// The result JSON of DESIGN.md §6, field by field.
+/// The result JSON of docs/io.md, field by field.
 struct result_document {
     struct facet_record {
         std::size_t index = 0;
@@ -48,6 +49,9 @@ struct result_document {
         double width_px = 0, height_px = 0;
         std::array<std::array<double, 3>, 3> K{};  ///< rows of the intrinsic matrix
         double d_min = 0, d_max = 0;               ///< certified distances; d_max may be +inf
+        /// The projection centre in the mount frame (axes: the camera's optical frame; origin: the
+        /// mount point), metres: the camera JSON's "mount_offset"; zero when it gives none.
+        std::array<double, 3> mount_offset{};
         friend bool operator==(const camera_record&, const camera_record&) = default;
     };
     struct task_record {
@@ -73,6 +77,9 @@ struct result_document {
     std::vector<box_record> boxes;
     /// valid, boundary and seconds are the contract; the rest are the extra "stats" fields.
     solve_stats stats;
+    /// The external occluders and camera regions of the run ("occluders", "keep_in",
+    /// "keep_out"; io/scene_record.hpp): set by the program, empty from make_result_document.
+    scene_record scene{};
 };
 
 /// Bounds of an interval box; an empty component gives NaN bounds (the writers reject them).

@@ -1,5 +1,5 @@
 // certipose/occlusion/cgal_aabb_occlusion.hpp — `aabb_occlusion`, a fast certified occlusion
-// test (past the paper, DESIGN.md §7).
+// test (past the paper, docs/occlusion.md).
 //
 // The union of all sight lines from a position box B to the facet f is the convex hull
 // H = conv(B ∪ f). With B strictly in front of f's plane, H meets that plane exactly in f, so

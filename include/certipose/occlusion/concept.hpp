@@ -1,5 +1,5 @@
 // certipose/occlusion/concept.hpp — the OcclusionPolicy concept: classify a camera position box
-// against one facet of the part (paper §6.3, DESIGN.md §3 constraint 6). No CGAL here: the
+// against one facet of the part (paper §6.3; constraint 6 of docs/conventions.md). No CGAL here: the
 // solver includes this header and must compile with `no_occlusion` and without CGAL.
 //
 // A policy is built once per scene — the part mesh plus optional external occluder meshes —

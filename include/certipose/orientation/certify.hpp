@@ -1,5 +1,5 @@
 // certipose/orientation/certify.hpp — proof of the field-of-view constraint over a whole 6D pose
-// box by interval arithmetic (DESIGN.md §3 constraint 5, §4 "Orientation").
+// box by interval arithmetic (constraint 5 of docs/conventions.md; docs/orientation.md).
 //
 // `certify_fov(position, orientation, facet, K, w, h)` answers, for EVERY camera position p in
 // [p] and EVERY rotation R(φ, γ, β) with (φ, γ, β) in [e]: is every facet vertex in front of
@@ -202,7 +202,7 @@ CERTIPOSE_DETAIL_INLINE ivec3<I> cross(const ivec3<I>& a, const ivec3<I>& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β) from sines and cosines, row-major (DESIGN.md §2).
+/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β) from sines and cosines, row-major (docs/conventions.md#zxz-angles).
 template <Interval I>
 CERTIPOSE_DETAIL_INLINE std::array<ivec3<I>, 3> zxz_rows(const I& sp, const I& cp, const I& sg, const I& cg, const I& sb, const I& cb) {
     const I cg_sb = cg * sb, cg_cb = cg * cb;

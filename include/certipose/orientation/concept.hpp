@@ -1,9 +1,9 @@
 // certipose/orientation/concept.hpp — the OrientationPolicy concept: certified orientation boxes
-// for one certified position box (DESIGN.md §4–5, paper §6.4 and Algorithm 3 lines 28–36).
+// for one certified position box (docs/orientation.md, paper §6.4 and Algorithm 3 lines 28–36).
 //
 // The solver paves positions first; for every VALID position box [p] it asks the orientation
 // policy `policy.orient(p, facet, camera, orientation_eps)` for orientation boxes [e] such that
-// every pose of [p] × [e] satisfies the field-of-view constraint (DESIGN.md §3, constraint 5).
+// every pose of [p] × [e] satisfies the field-of-view constraint (constraint 5, docs/conventions.md).
 // Every returned box must be certified (e.g. by `certify_fov`); an empty answer means "none
 // could be certified at this position-box size": the solver then bisects [p], down to ε_p, and
 // finally reports it BOUNDARY. The counters let the solver report how much certification work

@@ -1,5 +1,5 @@
 // certipose/orientation/paper_orientation.hpp — the default OrientationPolicy: the paper's §6.4
-// orientation intervals, certified over the whole 6D box (DESIGN.md §4, Algorithm 3 l. 28–36).
+// orientation intervals, certified over the whole 6D box (docs/orientation.md, Algorithm 3 l. 28–36).
 //
 // For a certified position box [p]:
 //  1. Nominal aim: the optical axis from the centre of [p] to the facet centroid gives φ_nom and

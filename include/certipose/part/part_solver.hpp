@@ -18,6 +18,10 @@
 // the whole search box occluded. These are certificates, like OCCLUDED: a skipped facet would
 // have had no VALID box.
 //
+// Camera regions (`part_options::regions`, solver/camera_regions.hpp): each facet's result is
+// restricted to the allowed camera positions in its worker, right after its solve, so the
+// record's counts, the sink's boxes and the run's totals are all of the restricted result.
+//
 // Budgets: per facet, `facet.max_boxes` and `facet.time_limit` (a facet that hits them keeps its
 // VALID boxes, pose_solver.hpp); for the run, `max_boxes` (checked in facet order, so the set of
 // facets finished is deterministic), `time_limit`, `stop` and the progress callback (return
@@ -47,6 +51,7 @@
 
 #include "certipose/error.hpp"
 #include "certipose/orientation/certify.hpp"
+#include "certipose/solver/camera_regions.hpp"
 #include "certipose/solver/pose_solver.hpp"
 
 namespace certipose {
@@ -106,6 +111,9 @@ struct part_options {
     std::size_t threads = 0;
     /// Also hand BOUNDARY boxes to the sink.
     bool keep_boundary = false;
+    /// Where the camera may stand: each facet's VALID boxes are restricted to these regions
+    /// (solver/camera_regions.hpp) before the record is made and the sink sees them.
+    camera_regions regions{};
     /// Skip facets provably uninspectable before paving them (see the header comment).
     bool skip_uninspectable = true;
     /// Whole run: boxes processed (sum over facets, in facet order), wall time.
@@ -208,6 +216,7 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
     using I = interval_type;
     using clock = std::chrono::steady_clock;
     options.facet.validate();
+    options.regions.validate();
     const std::size_t n = solver_.part().num_faces();
     std::vector<std::size_t> selection = options.facets;
     if (selection.empty()) {
@@ -303,6 +312,7 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
             it.dropped = true;
             return it;
         }
+        restrict_to_regions(r, options.regions, fo.position_eps);  // nothing without regions
         rec.seconds = r.stats.seconds;
         rec.valid = r.stats.valid;
         rec.boundary = r.stats.boundary;

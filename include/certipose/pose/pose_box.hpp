@@ -1,5 +1,5 @@
 // certipose/pose/pose_box.hpp — position boxes [x]×[y]×[z], orientation boxes [φ]×[γ]×[β]
-// (ZXZ Euler angles, DESIGN.md §2) and the 6D pose box the solver returns (paper §6.1).
+// (ZXZ Euler angles, docs/conventions.md) and the 6D pose box the solver returns (paper §6.1).
 #pragma once
 
 #include "certipose/pose/interval_box.hpp"

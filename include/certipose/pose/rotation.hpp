@@ -1,5 +1,5 @@
 // certipose/pose/rotation.hpp — the ZXZ camera rotation, world→camera transform and pixel
-// projection of DESIGN.md §2, for points (double) and for boxes (any certipose Interval).
+// projection of docs/conventions.md, for points (double) and for boxes (any certipose Interval).
 //
 // R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β) (paper Eq. 25) maps camera-frame vectors to world vectors; its
 // columns are the image x axis, the image y axis (pointing down the image) and the optical axis
@@ -42,7 +42,7 @@ using vector3 = Eigen::Matrix<T, 3, 1>;
 template <class T>
 using vector2 = Eigen::Matrix<T, 2, 1>;
 
-/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β), multiplied out (paper Eq. 25; DESIGN.md §2).
+/// R(φ, γ, β) = Rz(φ)·Rx(γ)·Rz(β), multiplied out (paper Eq. 25; docs/conventions.md#zxz-angles).
 template <RotationScalar T>
 matrix3<T> zxz_rotation(const T& phi, const T& gamma, const T& beta) {
     using std::cos;
@@ -94,7 +94,7 @@ bool in_front(const vector3<I>& qc) {
 namespace detail {
 inline void require_pinhole_k(const Eigen::Matrix3d& k) {
     if (!(k(2, 0) == 0.0 && k(2, 1) == 0.0 && k(2, 2) == 1.0) || !k.allFinite())
-        throw invalid_argument("K", "project: K must be finite with last row (0, 0, 1) (DESIGN.md §2), got (" +
+        throw invalid_argument("K", "project: K must be finite with last row (0, 0, 1), got (" +
                                         std::to_string(k(2, 0)) + ", " + std::to_string(k(2, 1)) + ", " +
                                         std::to_string(k(2, 2)) + ")");
 }

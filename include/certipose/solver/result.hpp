@@ -1,7 +1,7 @@
 // certipose/solver/result.hpp — what the solver returns: classified 6D pose boxes and
-// statistics (DESIGN.md §1, §6).
+// statistics (docs/solver.md; as a file: the result JSON of docs/io.md).
 //
-// VALID boxes are certified: every pose in them satisfies every constraint of DESIGN.md §3 for
+// VALID boxes are certified: every pose in them satisfies every constraint of docs/conventions.md for
 // every point of the facet. BOUNDARY boxes were left undecided at the resolution ε_p / ε_o.
 // Everything not returned was certified invalid, or not reached when a budget stopped the run
 // (`stats.termination` says which).
@@ -65,6 +65,9 @@ struct solve_stats {
     std::size_t orientation_groups = 0;  ///< cells of small position boxes oriented together
     /// position boxes oriented with a neighbouring cell's hint after their own search failed
     std::size_t orientation_borrowed = 0;
+    /// Camera regions (solver/camera_regions.hpp, applied after the solve): VALID 6D boxes or
+    /// pieces dropped as wholly outside the allowed space, and bisections made deciding pieces.
+    std::size_t region_dropped = 0, region_bisections = 0;
     double seconds_position = 0, seconds_orientation = 0, seconds = 0;
     termination reason = termination::completed;
 };
@@ -109,6 +112,8 @@ inline constexpr auto solve_stats_fields = std::make_tuple(
     stats_field{"orientation_certifications", &solve_stats::orientation_certifications},
     stats_field{"orientation_groups", &solve_stats::orientation_groups},
     stats_field{"orientation_borrowed", &solve_stats::orientation_borrowed},
+    stats_field{"region_dropped", &solve_stats::region_dropped},
+    stats_field{"region_bisections", &solve_stats::region_bisections},
     stats_field{"seconds_position", &solve_stats::seconds_position},
     stats_field{"seconds_orientation", &solve_stats::seconds_orientation},
     stats_field{"termination", &solve_stats::reason},

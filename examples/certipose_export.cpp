@@ -1,0 +1,136 @@
+// certipose-export — a plan (PLAN.json of certipose-plan) in the formats a fitter, a robot cell,
+// a CAD tool and a person open: a CSV of nominal poses and certified tolerances, ROS/MoveIt
+// constraints, a URDF snippet, a glTF 2.0 scene and a self-contained HTML viewer.
+//
+//   certipose-export PLAN.json --format csv|moveit|urdf|glb|html --out FILE
+//                    [--mesh PART [--scale S]] [--parent-frame NAME] [--link optical|mount]
+//                    [--title TEXT] [--quiet]
+//
+// glb and html draw the part, so they need --mesh (the plan's part; --scale defaults to the
+// scale the plan recorded, and the face count must match). The output is written atomically and
+// never over an input. Formats: docs/conventions.md#exports. Errors: one line
+// "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line).
+#include "program_support.hpp"
+
+#include <certipose/io/read_mesh.hpp>
+#include <certipose/io/json.hpp>
+#include <certipose/io/moveit_yaml.hpp>
+#include <certipose/io/output_files.hpp>
+#include <certipose/io/plan_export.hpp>
+#include <certipose/io/plan_files.hpp>
+#include <certipose/io/plan_gltf.hpp>
+#include <certipose/io/plan_html.hpp>
+#include <certipose/io/scene_record.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+// The viewer's HTML template and bundled script, embedded at build time (web/build.mjs →
+// certipose_viewer.cpp); empty when the build had no Node.js or no `npm ci` in web/.
+extern const std::string_view certipose_viewer_template;
+extern const std::string_view certipose_viewer_script;
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace certipose_program;
+
+struct arguments {
+    fs::path plan, mesh, out;
+    std::string format, parent_frame = "world", link = "optical", title;
+    std::optional<double> scale;
+    bool quiet = false;
+};
+
+std::optional<arguments> parse(int argc, char** argv, int& code) {
+    CLI::App app{"certipose-export: a plan's cameras as CSV, ROS/MoveIt constraints, URDF, glTF (.glb) or a "
+                 "self-contained HTML viewer (docs/conventions.md#exports).",
+                 "certipose-export"};
+    arguments a;
+    std::string plan, mesh, out, scale;
+    app.add_option("plan", plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--format", a.format, "csv, moveit, urdf, glb or html")->type_name("FORMAT")->required();
+    app.add_option("--out", out, "the file to write")->type_name("FILE")->required();
+    app.add_option("--mesh", mesh, "the plan's part (needed by glb and html): OFF, OBJ, PLY or STL")
+        ->type_name("PART")->check(CLI::ExistingFile);
+    app.add_option("--scale", scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
+    app.add_option("--parent-frame", a.parent_frame, "urdf: the link the cameras are fixed to (default world); "
+                   "moveit: the planning frame of the part")->type_name("NAME");
+    app.add_option("--link", a.link, "moveit: constrain each camera's optical frame (default) or its mount "
+                   "(with the camera's mount_offset)")->type_name("optical|mount");
+    app.add_option("--title", a.title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
+    app.add_flag("--quiet,-q", a.quiet, "print nothing but errors");
+    if (!parse_command_line(app, argc, argv, "certipose-export", code)) return std::nullopt;
+    try {
+        a.plan = plan, a.mesh = mesh, a.out = out;
+        if (a.format != "csv" && a.format != "moveit" && a.format != "urdf" && a.format != "glb" && a.format != "html")
+            throw usage_error("--format: expected csv, moveit, urdf, glb or html, got '" + a.format + "'");
+        if (a.link != "optical" && a.link != "mount")
+            throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
+        if ((a.format == "glb" || a.format == "html") && a.mesh.empty())
+            throw usage_error("--format " + a.format + " draws the part: give --mesh PART");
+        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
+        if (a.title.empty()) a.title = "certipose plan: " + a.plan.filename().string();
+        check_output("--out", a.out);
+        return a;
+    } catch (const usage_error& e) {
+        usage_failure("certipose-export", e.what(), code);
+        return std::nullopt;
+    }
+}
+
+std::string content(const arguments& args, const certipose::plan_document& plan) {
+    if (args.format == "csv") return certipose::plan_csv(plan);
+    if (args.format == "urdf") return certipose::plan_urdf(plan, args.parent_frame);
+    if (args.format == "moveit")
+        return certipose::plan_moveit_yaml(
+            plan, {.frame_id = args.parent_frame,
+                   .link = args.link == "mount" ? certipose::constrained_link::mount : certipose::constrained_link::optical_frame});
+    const double scale = args.scale.value_or(plan.mesh.scale);
+    const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = scale});
+    // The plan's facet indices mean something only on its own part.
+    const auto mismatch = [&](const char* what, const std::string& theirs, const std::string& ours) {
+        throw certipose::invalid_argument(what, args.plan.string() + ": the plan's " + what + " (" + theirs +
+                                                    ") is not this mesh's (" + ours +
+                                                    "): give the mesh, and --scale, the plan was made for");
+    };
+    if (mesh.num_faces() != plan.mesh.faces)
+        mismatch("mesh.faces", std::to_string(plan.mesh.faces), std::to_string(mesh.num_faces()));
+    if (!plan.mesh.digest.empty() && plan.mesh.digest != certipose::mesh_digest(mesh))
+        mismatch("mesh.digest", plan.mesh.digest, certipose::mesh_digest(mesh));
+    const std::string glb = certipose::plan_glb(mesh, plan);
+    if (args.format == "glb") return glb;
+    if (certipose_viewer_script.empty())
+        throw certipose::invalid_argument("format", "--format html: this build has no web viewer (it needs Node.js and "
+                                                    "`npm ci` in web/ when configuring; scripts/install-deps.sh does both)");
+    return certipose::plan_html(plan, glb, mesh.num_faces(), {certipose_viewer_template, certipose_viewer_script}, args.title);
+}
+
+int run(const arguments& args) {
+    const certipose::plan_document plan = certipose::read_plan(args.plan);
+    certipose::output_files files;
+    files.add(args.out, content(args, plan));
+    files.commit();
+    if (!args.quiet)
+        std::printf("wrote %s (%s, %zu cameras)\n", args.out.string().c_str(), args.format.c_str(), plan.cameras.size());
+    return exit_ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    int code = exit_ok;
+    const auto args = parse(argc, argv, code);
+    if (!args) return code;
+    return report_errors("certipose-export", [&] {
+        std::vector<certipose::named_path> inputs{{"PLAN.json", args->plan}};
+        if (!args->mesh.empty()) inputs.push_back({"--mesh", args->mesh});
+        certipose::refuse_overwriting_inputs(inputs, {{"--out", args->out}});
+        return run(*args);
+    });
+}

@@ -1,0 +1,82 @@
+// examples/program_scene.hpp — the scene options of the certipose programs, the part that needs
+// the mesh reader (not a library header; the command-line side is in program_support.hpp):
+// reading the --occluder meshes as --mesh is read (same reader, same errors), their records for
+// the outputs (io/scene_record.hpp), and naming an occluder's file in the occlusion policy's
+// errors (the policies check that every scene mesh is a closed solid and call the extra meshes
+// "occluder 0", "occluder 1", ... in the order given).
+#pragma once
+
+#include "program_support.hpp"
+
+#include <certipose/cgal.hpp>
+#include <certipose/io/output_files.hpp>
+#include <certipose/io/scene_record.hpp>
+
+#include <cctype>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace certipose_program {
+
+/// The occluders of a run, read, and what the outputs record of the scene.
+struct scene {
+    std::vector<certipose::triangle_mesh> occluders;
+    certipose::scene_record record;
+};
+
+/// Reads every --occluder with its scale (io_error / mesh_error naming the file, as for --mesh).
+inline scene read_scene(const scene_arguments& args, stage_line* stage = nullptr) {
+    scene s;
+    s.occluders.reserve(args.occluders.size());
+    for (const auto& o : args.occluders) {
+        if (stage) stage->show("reading " + o.path.string());
+        s.occluders.push_back(certipose::read_mesh(o.path, {.scale = o.scale}));
+        s.record.occluders.push_back(certipose::describe_occluder(o.path.string(), o.scale, s.occluders.back()));
+    }
+    s.record.regions = args.regions;
+    return s;
+}
+
+/// The --occluder files as inputs no output may overwrite.
+inline void add_occluder_inputs(std::vector<certipose::named_path>& inputs, const scene_arguments& args) {
+    for (const auto& o : args.occluders) inputs.push_back({"--occluder", o.path});
+}
+
+/// Returns `build()` (a solver being built); a mesh_error of the occlusion policy about
+/// "occluder i" is re-thrown as "--occluder FILE: <the policy's message>".
+template <class Build>
+decltype(auto) naming_occluders(const scene_arguments& args, Build&& build) {
+    try {
+        return build();
+    } catch (const certipose::mesh_error& e) {
+        const std::string what = e.what();
+        static const std::string tag = "occluder ";
+        for (std::size_t at = what.find(tag); at != std::string::npos; at = what.find(tag, at + 1)) {
+            std::size_t end = at + tag.size(), i = 0;
+            if (end >= what.size() || !std::isdigit(static_cast<unsigned char>(what[end]))) continue;
+            for (; end < what.size() && std::isdigit(static_cast<unsigned char>(what[end])); ++end)
+                i = 10 * i + static_cast<std::size_t>(what[end] - '0');
+            if (i < args.occluders.size())
+                throw certipose::mesh_error("--occluder " + args.occluders[i].path.string() + ": " + what +
+                                            " (every occluder must be a closed solid)");
+        }
+        throw;
+    }
+}
+
+/// "1 occluder, 1 keep-out region" (empty without any): for the programs' summary lines.
+inline std::string scene_text(const scene_arguments& args) {
+    std::string s;
+    const auto add = [&](std::size_t n, const char* what) {
+        if (n == 0) return;
+        if (!s.empty()) s += ", ";
+        s += std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    add(args.occluders.size(), "occluder");
+    add(args.regions.keep_in.size(), "keep-in region");
+    add(args.regions.keep_out.size(), "keep-out region");
+    return s;
+}
+
+}  // namespace certipose_program

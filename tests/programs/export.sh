@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# certipose-part -> certipose-plan -> certipose-export in every format (CTest: program.export).
+#   export.sh PART PLAN EXPORT MESH CAMERA WORK_DIR NODE SOURCE_DIR
+# The CSV has a header and a row per camera; the MoveIt YAML, the URDF snippet name every camera;
+# the .glb passes the Khronos glTF validator; the HTML page loads in headless Chromium without
+# console errors, draws, and its facet picker names the cameras that certify the picked facet.
+# The output never replaces an input, a bad option writes nothing, and a mesh that is not the
+# plan's is refused.
+set -uo pipefail
+part=$1 plan=$2 export=$3 mesh=$4 camera=$5 work=$6 node=$7 src=$8
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+"$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 880-920 \
+    --out run --quiet || fail "certipose-part failed"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --out plan.json --quiet \
+    || fail "certipose-plan failed"
+cameras=$(grep -c '"from_facet"' plan.json)
+[ "$cameras" -ge 1 ] || fail "no camera in the plan"
+
+"$export" plan.json --format csv --out plan.csv >out 2>err || fail "csv: $(cat err)"
+head -1 plan.csv | grep -q '^camera,x,y,z,qx,qy,qz,qw,m00,.*,axis_cone_half_angle,roll_half_range,' \
+    || fail "csv header: $(head -1 plan.csv)"
+[ "$(($(wc -l < plan.csv) - 1))" -eq "$cameras" ] || fail "csv: expected $cameras rows"
+grep -q 'wrote plan.csv' out || fail "no summary line: $(cat out)"
+
+"$export" plan.json --format moveit --out plan.yaml --quiet 2>err || fail "moveit: $(cat err)"
+[ "$(grep -c 'parameterization: 1' plan.yaml)" -eq "$cameras" ] || fail "moveit: one orientation constraint per camera"
+grep -q 'link_name: camera_0_optical_frame' plan.yaml || fail "moveit: no optical frame link"
+
+"$export" plan.json --format urdf --parent-frame base_link --out plan.urdf --quiet 2>err || fail "urdf: $(cat err)"
+[ "$(grep -c '<parent link="base_link"/>' plan.urdf)" -eq "$cameras" ] || fail "urdf: one joint per camera on base_link"
+"$export" plan.json --format urdf --parent-frame 'bad frame' --out bad.urdf --quiet 2>err
+[ $? -eq 1 ] || fail "urdf: a frame name with a space: expected exit 1"
+grep -q "bad frame" err || fail "the bad frame name is not named: $(cat err)"
+
+"$export" plan.json --format glb --mesh "$mesh" --out plan.glb --quiet 2>err || fail "glb: $(cat err)"
+"$node" "$src/tests/web/validate_glb.mjs" plan.glb || fail "plan.glb does not pass the glTF validator"
+
+"$export" plan.json --format html --mesh "$mesh" --out plan.html --quiet 2>err || fail "html: $(cat err)"
+"$node" "$src/tests/web/viewer_test.mjs" plan.html viewer.png || fail "the HTML viewer test failed"
+
+# Refusals: an output that is an input, bad options, a mesh that is not the plan's.
+cp plan.json keep.json
+"$export" plan.json --format csv --out plan.json --quiet 2>err && fail "overwrote its input"
+cmp -s plan.json keep.json || fail "the plan was changed"
+grep -q 'certipose-export: ' err || fail "no error line for an output that is an input"
+"$export" plan.json --format pdf --out x.pdf 2>err
+[ $? -eq 2 ] || fail "--format pdf: expected exit 2"
+grep -q "'pdf'" err || fail "the bad format is not named: $(cat err)"
+"$export" plan.json --format glb --out x.glb 2>err
+[ $? -eq 2 ] || fail "--format glb without --mesh: expected exit 2"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > one.off
+"$export" plan.json --format glb --mesh one.off --out x.glb 2>err
+[ $? -eq 1 ] || fail "another mesh: expected exit 1"
+grep -q 'mesh.faces' err || fail "the face count mismatch is not named: $(cat err)"
+# The plan's own part at another scale: as many faces, another digest.
+"$export" plan.json --format glb --mesh "$mesh" --scale 2 --out x.glb 2>err
+[ $? -eq 1 ] || fail "the part at another scale: expected exit 1"
+grep -q 'mesh.digest' err || fail "the digest mismatch is not named: $(cat err)"
+[ -e x.pdf ] || [ -e x.glb ] && fail "a failed run wrote its output"
+echo "export: $cameras cameras exported in 5 formats"

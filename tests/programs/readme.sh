@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Runs the README's walkthrough (the ```sh block between the readme-walkthrough markers) line
+# for line, as a user would after README command (1) (CTest: program.readme).
+#   readme.sh SOURCE_DIR BINARY_DIR WORK_DIR NODE
+# The work directory mirrors a checkout: examples/ is the source's, build/release is this build
+# tree, so the README's paths run unchanged. Then it checks what the README promises: every file
+# exists, no camera of the plan is below the fixture plate's top, the verify report certifies the
+# plan's facets, and the HTML page passes the browser test (its screenshot is docs/viewer.png's).
+set -uo pipefail
+src=$1 bin=$2 work=$3 node=$4
+fail() { echo "FAIL: $*" >&2; exit 1; }
+rm -rf "$work" && mkdir -p "$work/build" && cd "$work" || exit 1
+ln -s "$src/examples" examples
+ln -s "$bin" build/release
+awk '/<!-- readme-walkthrough: begin -->/{on=1; next} /<!-- readme-walkthrough: end -->/{on=0} on' "$src/README.md" \
+    | sed '/^```/d' > walkthrough.sh
+[ "$(grep -c 'certipose-' walkthrough.sh)" -ge 9 ] || fail "the README's walkthrough block was not found"
+bash -euo pipefail walkthrough.sh > out 2> err || fail "the README's walkthrough failed: $(tail -5 err)"
+
+for f in facet900.json facet900.ply part-run/summary.json part-run/boxes.jsonl plan.json verify.json \
+         plan.csv plan.yaml plan.urdf plan.glb plan.html; do
+    [ -s "$f" ] || fail "the walkthrough did not write $f"
+done
+grep -q '"occluders"' plan.json || fail "plan.json does not record the occluder"
+grep -q 'fixture_plate' plan.json || fail "plan.json does not name the fixture plate"
+# No camera box reaches below the plate's top (z = 0): the keep-out box held.
+python3 - <<'PY' || exit 1
+import json, sys
+plan = json.load(open("plan.json"))
+low = [c["position"][2][0] for c in plan["cameras"]]
+if not plan["cameras"]: sys.exit("FAIL: the plan has no camera")
+if min(low) < 0: sys.exit("FAIL: a camera box goes below the plate: z from %g" % min(low))
+print("readme: %d cameras, lowest box z %.3f m" % (len(low), min(low)))
+PY
+"$node" "$src/tests/web/validate_glb.mjs" plan.glb >/dev/null || fail "plan.glb does not validate"
+"$node" "$src/tests/web/viewer_test.mjs" plan.html viewer.png > viewer.log 2>&1 || fail "viewer: $(tail -5 viewer.log)"
+echo "readme: the walkthrough ran; viewer screenshot: $work/viewer.png"
