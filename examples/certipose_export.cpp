@@ -52,7 +52,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "self-contained HTML viewer (docs/conventions.md#exports).",
                  "certipose-export"};
     arguments a;
-    std::string plan, mesh, out, scale;
+    std::string plan, mesh, out, scale, link, title;
     app.add_option("plan", plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
     app.add_option("--format", a.format, "csv, moveit, urdf, glb or html")->type_name("FORMAT")->required();
     app.add_option("--out", out, "the file to write")->type_name("FILE")->required();
@@ -61,18 +61,31 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--scale", scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
     app.add_option("--parent-frame", a.parent_frame, "urdf: the link the cameras are fixed to (default world); "
                    "moveit: the planning frame of the part")->type_name("NAME");
-    app.add_option("--link", a.link, "moveit: constrain each camera's optical frame (default) or its mount "
+    app.add_option("--link", link, "moveit: constrain each camera's optical frame (default) or its mount "
                    "(with the camera's mount_offset)")->type_name("optical|mount");
-    app.add_option("--title", a.title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
+    app.add_option("--title", title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
     app.add_flag("--quiet,-q", a.quiet, "print nothing but errors");
     if (!parse_command_line(app, argc, argv, "certipose-export", code)) return std::nullopt;
     try {
         a.plan = plan, a.mesh = mesh, a.out = out;
         if (a.format != "csv" && a.format != "moveit" && a.format != "urdf" && a.format != "glb" && a.format != "html")
             throw usage_error("--format: expected csv, moveit, urdf, glb or html, got '" + a.format + "'");
+        const bool picture = a.format == "glb" || a.format == "html";
+        // An option the format does not use is a mistake worth naming, not something to ignore.
+        const auto only_for = [&](const std::string& option, bool given, bool used, const char* formats) {
+            if (given && !used) throw usage_error(option + " applies to " + formats + ", not --format " + a.format);
+        };
+        only_for("--parent-frame", app.count("--parent-frame") > 0, a.format == "urdf" || a.format == "moveit",
+                 "--format urdf and moveit");
+        only_for("--link", !link.empty(), a.format == "moveit", "--format moveit");
+        only_for("--title", !title.empty(), a.format == "html", "--format html");
+        only_for("--mesh", !mesh.empty(), picture, "--format glb and html");
+        only_for("--scale", !scale.empty(), picture, "--format glb and html");
+        if (!link.empty()) a.link = link;
+        if (!title.empty()) a.title = title;
         if (a.link != "optical" && a.link != "mount")
             throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
-        if ((a.format == "glb" || a.format == "html") && a.mesh.empty())
+        if (picture && a.mesh.empty())
             throw usage_error("--format " + a.format + " draws the part: give --mesh PART");
         if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
         if (a.title.empty()) a.title = "certipose plan: " + a.plan.filename().string();

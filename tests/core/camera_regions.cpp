@@ -343,3 +343,31 @@ TEST_CASE("camera regions: occluders and regions in the result JSON, and files w
     bad["occluders"][0].erase("digest");
     CHECK_THROWS_WITH_AS(result_from_json(bad), doctest::Contains("occluders[0].digest"), invalid_argument);
 }
+
+TEST_CASE("camera regions: box regions are cut exactly on their faces, leaving nothing undecided") {
+    // A keep-out slab through the middle of a VALID box and a keep-in that clips one corner: the
+    // pieces are decided in a few exact cuts, however small ε_p is (no halving to ε_p / 10).
+    certipose::solve_result<I> r;
+    const auto p = pbox({0, 0, 0}, {1, 1, 1});
+    r.boxes.push_back({certipose::box_class::valid, {p, p}});
+    r.stats.valid = 1;
+    r.stats.valid_volume = 1;
+    camera_regions regions;
+    regions.keep_out = {camera_region::box({-1, -1, 0.4}, {2, 2, 0.6})};
+    regions.keep_in = {camera_region::box({0.25, -1, -1}, {2, 2, 2})};
+    certipose::restrict_to_regions(r, regions, 1e-6);
+    std::size_t valid = 0;
+    double volume = 0;
+    for (const auto& b : r.boxes) {
+        CHECK(b.cls == certipose::box_class::valid);  // nothing undecided
+        ++valid;
+        volume += certipose::volume(b.box.position);
+        CHECK(regions.classify(b.box.position) == region_verdict::allowed);
+        // The faces are kept to the last double: the pieces touch the regions' planes.
+        CHECK((upper(b.box.position[2]) == std::nextafter(0.4, -INFINITY) || lower(b.box.position[2]) == std::nextafter(0.6, INFINITY)));
+        CHECK(lower(b.box.position[0]) == 0.25);
+    }
+    CHECK(valid == 2);
+    CHECK(r.stats.region_bisections <= 6);
+    CHECK(std::abs(volume - 0.75 * 0.8) < 1e-12);
+}

@@ -50,6 +50,10 @@ grep -q 'certipose-export: ' err || fail "no error line for an output that is an
 grep -q "'pdf'" err || fail "the bad format is not named: $(cat err)"
 "$export" plan.json --format glb --out x.glb 2>err
 [ $? -eq 2 ] || fail "--format glb without --mesh: expected exit 2"
+"$export" plan.json --format csv --title T --out x.csv 2>err
+[ $? -eq 2 ] || fail "--title with --format csv: expected exit 2"
+grep -q -- "--title applies to --format html" err || fail "the unused option is not named: $(cat err)"
+[ -e x.csv ] && fail "a refused run wrote its output"
 printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > one.off
 "$export" plan.json --format glb --mesh one.off --out x.glb 2>err
 [ $? -eq 1 ] || fail "another mesh: expected exit 1"

@@ -15,6 +15,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -172,4 +173,21 @@ TEST_CASE("export: the glTF scene holds the part facet by facet and each camera'
     plan_document bad = f.plan;
     bad.cameras[0].facets.push_back(part().mesh.num_faces());
     CHECK_THROWS_AS(plan_glb(part().mesh, bad), out_of_range);
+}
+
+TEST_CASE("export: URDF roll-pitch-yaw rebuild the nominal rotation, also next to pitch ±π/2") {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> any(-3.1, 3.1), near(-1e-6, 1e-6);
+    const auto rebuild = [](const std::array<double, 3>& rpy) {
+        return Eigen::Matrix3d(Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX()));
+    };
+    for (int n = 0; n < 400; ++n) {
+        // Random rotations, and rotations within 1e-6 of the lock (pitch = ±π/2).
+        const double pitch = n % 2 ? any(rng) / 2 : (n % 4 ? 1 : -1) * (std::numbers::pi / 2 + near(rng));
+        const Eigen::Matrix3d r = rebuild({any(rng), pitch, any(rng)});
+        CAPTURE(pitch);
+        CHECK((rebuild(urdf_rpy(r)) - r).cwiseAbs().maxCoeff() < 1e-12);
+    }
 }

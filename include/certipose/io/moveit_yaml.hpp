@@ -26,7 +26,7 @@ namespace certipose {
 enum class constrained_link { optical_frame, mount };
 
 struct moveit_options {
-    std::string frame_id = "part";  ///< the part's frame in the planning scene
+    std::string frame_id = "world";  ///< the part's frame in the planning scene
     constrained_link link = constrained_link::optical_frame;
     /// The link name of camera k: `link_prefix + k + "_optical_frame"` or `+ "_mount"`.
     std::string link_prefix = "camera_";

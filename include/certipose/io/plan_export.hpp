@@ -16,10 +16,13 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -83,10 +86,16 @@ inline std::vector<camera_export> camera_exports(const plan_document& plan) {
 
 /// URDF's fixed-axis roll-pitch-yaw of a rotation: R = Rz(yaw)·Ry(pitch)·Rx(roll).
 inline std::array<double, 3> urdf_rpy(const Eigen::Matrix3d& r) {
-    const double sp = std::clamp(-r(2, 0), -1.0, 1.0);
-    if (std::abs(sp) > 1 - 1e-12)  // gimbal lock: put all of the heading in yaw
-        return {0.0, std::asin(sp), std::atan2(-r(0, 1), r(1, 1))};
-    return {std::atan2(r(2, 1), r(2, 2)), std::asin(sp), std::atan2(r(1, 0), r(0, 0))};
+    // Pitch and yaw from the first column (its horizontal part gives cos(pitch) accurately up to
+    // the lock, where asin(−R₂₀) would lose half the digits); then roll from what is left,
+    // Ry(pitch)ᵀ·Rz(yaw)ᵀ·R = Rx(roll), so that near the lock, where yaw alone is ill-conditioned,
+    // roll absorbs its error and the three angles still rebuild R to rounding.
+    const double cp = std::hypot(r(0, 0), r(1, 0));
+    const double pitch = std::atan2(-r(2, 0), cp);
+    const double yaw = cp > 0 ? std::atan2(r(1, 0), r(0, 0)) : 0.0;  // at the lock: all of it in roll
+    const Eigen::Matrix3d rest = (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                  Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY())).toRotationMatrix().transpose() * r;
+    return {std::atan2(rest(2, 1), rest(1, 1)), pitch, yaw};
 }
 
 /// The CSV of certipose-export: a header row, then one row per camera (docs/conventions.md#csv).

@@ -20,7 +20,8 @@
 // A quaternion or a matrix is converted to ZXZ angles in double (pose/quaternion.hpp), which is
 // not exact: the pose becomes the box of ±converted_pose_half_width radians around the converted
 // angles (the conversion's error is below 1e-9 rad away from the gimbal lock, which is refused:
-// see poses_from_json), its position a point.
+// see poses_from_json), its position a point; a matrix orthonormal only approximately gets a
+// box widened by that ambiguity (detail::json_io::converted_pose).
 #pragma once
 
 #include "certipose/io/json.hpp"
@@ -28,6 +29,7 @@
 #include "certipose/io/ply.hpp"
 #include "certipose/pose/quaternion.hpp"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -335,9 +337,11 @@ struct pose_input {
 namespace detail::json_io {
 
 /// The ZXZ pose of a rotation matrix `r` and position `x` as a pose_input (see pose_form).
-/// Refuses the gimbal lock, naming `where`.
+/// Refuses the gimbal lock, naming `where`. `slack` (≥ 0) widens the box for an input that names
+/// its rotation only to within that much (a matrix not quite orthonormal): by 4·slack in γ and
+/// 4·slack / sin γ in φ and β, the ZXZ angles' sensitivity to a rotation of the axes.
 inline pose_input converted_pose(const Eigen::Matrix3d& r, const std::array<double, 3>& x, pose_form form,
-                                 const std::string& where) {
+                                 const std::string& where, double slack = 0.0) {
     // β reads the third row and φ the third column: both need a horizontal part (for an exact
     // rotation they are the same, sin γ).
     const double sin_gamma = std::min(zxz_sin_gamma(r), std::hypot(r(2, 0), r(2, 1)));
@@ -353,7 +357,8 @@ inline pose_input converted_pose(const Eigen::Matrix3d& r, const std::array<doub
     const double angles[3] = {a.phi, a.gamma, a.beta};
     for (std::size_t k = 0; k < 3; ++k) {
         p.position[k] = {x[k], x[k]};
-        p.orientation[k] = {angles[k] - converted_pose_half_width, angles[k] + converted_pose_half_width};
+        const double h = converted_pose_half_width + (k == 1 ? 4 * slack : 4 * slack / sin_gamma);
+        p.orientation[k] = {angles[k] - h, angles[k] + h};
     }
     return p;
 }
@@ -441,7 +446,12 @@ inline std::vector<pose_input> poses_from_json(const nlohmann::json& j) {
             if (!(r.determinant() > 0))
                 fail(where, "the rotation part (upper-left 3x3) has determinant " + certipose::detail::format_double(r.determinant()) +
                                 ": a reflection, not a rotation");
-            p = converted_pose(r, {rows[0][3], rows[1][3], rows[2][3]}, pose_form::matrix, where);
+            // A matrix orthonormal only within `off` does not name one rotation: every rotation
+            // within about `off` of it is as much "the" pose. Take the rotation of its quaternion
+            // and widen the box by the ambiguity (converted_pose's slack), so that it holds them.
+            Eigen::Quaterniond q(r);
+            q.normalize();
+            p = converted_pose(q.toRotationMatrix(), {rows[0][3], rows[1][3], rows[2][3]}, pose_form::matrix, where, off);
         } else {
             require_object(e, path);
             p.form = pose_form::box;

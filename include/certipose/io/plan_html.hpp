@@ -99,7 +99,8 @@ inline std::string plan_html(const plan_document& plan, std::string_view glb, st
     }
     scene["cameras"] = std::move(cameras);
     scene["facet_cameras"] = facet_cameras;
-    std::string json = scene.dump();
+    // A title that is not UTF-8 (a file name, say) is shown with U+FFFD rather than refused.
+    std::string json = scene.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     // Inside <script> the HTML parser looks for "</script" and "<!--" (which changes how it finds
     // the end); in JSON '<' occurs only inside strings, where \u003c means the same character.
     for (std::size_t at = 0; (at = json.find('<', at)) != std::string::npos;) json.replace(at, 1, "\\u003c");

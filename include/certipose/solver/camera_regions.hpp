@@ -20,10 +20,11 @@
 //   - forbidden (inside one keep-out, or disjoint from every keep-in): dropped, counted in
 //     `stats.region_dropped` — decided, like a box the solver proved invalid, so not returned
 //     (a BOUNDARY box would claim it undecided);
-//   - neither: bisected on its widest position axis; the pieces are decided the same way, down
-//     to `camera_regions::width(ε_p)` (0 → ε_p / 10, carving's minimal piece); what is still
-//     undecided then is returned BOUNDARY with reason `camera_region`, keeping its orientation
-//     intervals (they are certified: only the position is in doubt).
+//   - neither: cut exactly on the faces of the box regions that cross it (a box region leaves
+//     nothing undecided, in at most six cuts), then, for spheres, bisected on its widest position
+//     axis; the pieces are decided the same way, down to `camera_regions::width(ε_p)` (0 → ε_p / 10,
+//     carving's minimal piece); what is still undecided then is returned BOUNDARY with reason
+//     `camera_region`, keeping its orientation intervals (only the position is in doubt).
 // Any sub-box of a VALID box is VALID (its certificate holds for every pose in it), so the stage
 // only removes poses. The box–box tests compare doubles exactly; the box–sphere tests bound the
 // squared distance with outward-rounded interval arithmetic (the result's interval type, under
@@ -38,10 +39,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -251,9 +254,35 @@ struct region_pieces {
     std::size_t forbidden = 0, bisections = 0;
 };
 
-/// `b` cut into allowed, forbidden and undecided pieces (see the header comment): bisected on
-/// its widest axis while undecided and wider than `min_width` (> 0). Pieces come in a
-/// deterministic order (depth first, lower half first).
+namespace detail::regions {
+/// A cut of an undecided box `q` along a face of a box region that crosses it: the two pieces
+/// [lo, below] and [above, hi] on axis `k`, with below < above adjacent doubles, so each piece
+/// lies wholly on one side of the face (the closed region holds `above` = its min, or `below` =
+/// its max). The reals strictly between the two doubles are given up: only poses are removed.
+struct face_cut {
+    std::size_t k = 0;
+    double below = 0, above = 0;
+};
+
+template <Interval I>
+std::optional<face_cut> box_face_cut(const position_box<I>& q, const std::vector<camera_region>& regions) {
+    for (const auto& r : regions) {
+        if (!r.is_box()) continue;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double lo = lower(q[k]), hi = upper(q[k]), a = r.values[k], b = r.values[k + 3];
+            if (lo < a && a <= hi) return face_cut{k, std::nextafter(a, -INFINITY), a};
+            if (lo <= b && b < hi) return face_cut{k, b, std::nextafter(b, INFINITY)};
+        }
+    }
+    return std::nullopt;
+}
+}  // namespace detail::regions
+
+/// `b` cut into allowed, forbidden and undecided pieces (see the header comment). While a piece
+/// is undecided it is cut exactly on a face of a box region that crosses it (at most six cuts a
+/// region, leaving nothing undecided by box regions), else bisected on its widest axis while wider
+/// than `min_width` (> 0; spheres). Pieces come in a deterministic order (depth first, lower
+/// piece first).
 template <Interval I>
 region_pieces<I> split_by_regions(const position_box<I>& b, const camera_regions& regions, double min_width) {
     if (!(min_width > 0.0) || !std::isfinite(min_width))
@@ -270,13 +299,21 @@ region_pieces<I> split_by_regions(const position_box<I>& b, const camera_regions
             case region_verdict::forbidden: ++out.forbidden; continue;
             case region_verdict::undecided: break;
         }
-        const std::size_t k = widest_dimension(q);
-        const double cut = split_point(q[k]);
-        if (width(q[k]) <= min_width || !(lower(q[k]) < cut && cut < upper(q[k]))) {
-            out.undecided.push_back(q);
-            continue;
+        position_box<I> low = q, high = q;
+        auto f = detail::regions::box_face_cut(q, regions.keep_out);
+        if (!f) f = detail::regions::box_face_cut(q, regions.keep_in);
+        if (f) {
+            low[f->k] = I(lower(q[f->k]), f->below);
+            high[f->k] = I(f->above, upper(q[f->k]));
+        } else {
+            const std::size_t k = widest_dimension(q);
+            const double cut = split_point(q[k]);
+            if (width(q[k]) <= min_width || !(lower(q[k]) < cut && cut < upper(q[k]))) {
+                out.undecided.push_back(q);
+                continue;
+            }
+            std::tie(low, high) = bisect_at(q, k, cut);
         }
-        auto [low, high] = bisect_at(q, k, cut);
         ++out.bisections;
         todo.push_back(high);
         todo.push_back(low);  // next: the lower half first
