@@ -3,7 +3,7 @@
 // interest, examples/data/camera.json) always, and on the four reference cases of
 // docs/completeness.md#the-reference-cases when the build names their folder
 // (-DCERTIPOSE_REFERENCE_DATA=DIR, holding meshes/*.off and cases/*.json; those meshes are not
-// distributed with certipose).
+// distributed with certipose). CERTIPOSE_BENCH_CAMERA=FILE replaces the case study's camera JSON.
 //
 // The truth comes from an independent sampler (verify/point_check.hpp, plain doubles and ray
 // casting): positions drawn uniformly in the facet's bounding box grown by d_max that satisfy
@@ -17,6 +17,9 @@
 //   (also: cuts, leaf, depth1 — one corner box per leaf, rest2 — corner boxes of rest boxes
 //   down to two minimal pieces, the default before 3). refine_grow: refinement and growth
 //   in one 1 s budget, the most complete answer a second gives.
+// A mode may carry a part placement tolerance (pose/placement_tolerance.hpp) after '@':
+// "full@0.003/0.0175" solves with ±3 mm on each axis and 0.0175 rad about the part's centroid;
+// the truth stays the nominal one, so the share shows what the tolerance costs.
 // With `every` = N > 0, no table: each part's every Nth facet is solved once per mode, and the
 // totals (seconds, VALID / BOUNDARY boxes, certified volume) are printed — a broader check that
 // a change to the solver keeps its VALID boxes and what it costs, beyond the four facets.
@@ -28,6 +31,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -63,8 +67,12 @@ struct loaded_case {
 std::vector<loaded_case> load_cases() {
     std::vector<loaded_case> out;
     certipose::sample_part part = certipose::make_sample_part();
+    // CERTIPOSE_BENCH_CAMERA: another camera JSON for the case study (bench/placement_cost.py
+    // measures a distorted lens against its pinhole twin so).
+    const char* camera = std::getenv("CERTIPOSE_BENCH_CAMERA");
     out.push_back({"sample_part.off", std::move(part.mesh),
-                   certipose::read_camera_task(std::string(CERTIPOSE_EXAMPLE_DATA) + "/camera.json"),
+                   certipose::read_camera_task(camera && *camera ? std::string(camera)
+                                                                 : std::string(CERTIPOSE_EXAMPLE_DATA) + "/camera.json"),
                    part.facet_of_interest});
     const std::string data = CERTIPOSE_REFERENCE_DATA;
     if (data.empty()) {
@@ -122,7 +130,30 @@ figures measure(const certipose::solve_result<I>& r, const truth& t) {
     return out;
 }
 
-certipose::solve_options mode_options(const std::string& mode) {
+/// The mode's name before '@', and its placement tolerance after it ("T/ROT"), if any.
+std::pair<std::string, std::optional<certipose::placement_tolerance>> split_mode(const std::string& mode) {
+    const auto at = mode.find('@');
+    if (at == std::string::npos) return {mode, std::nullopt};
+    const std::string rest = mode.substr(at + 1);
+    const auto comma = rest.find('/');
+    if (comma == std::string::npos) {
+        std::fprintf(stderr, "mode %s: expected NAME@T/ROT\n", mode.c_str());
+        std::exit(2);
+    }
+    const double t = std::strtod(rest.substr(0, comma).c_str(), nullptr), rot = std::strtod(rest.substr(comma + 1).c_str(), nullptr);
+    certipose::placement_tolerance tol{.translation = {t, t, t}, .rotation = rot};
+    tol.validate();
+    return {mode.substr(0, at), tol};
+}
+
+/// The task of a case with a mode's placement tolerance.
+certipose::inspection_task mode_task(certipose::inspection_task task, const std::string& mode) {
+    task.placement = split_mode(mode).second;
+    return task;
+}
+
+certipose::solve_options mode_options(const std::string& full_mode) {
+    const std::string mode = split_mode(full_mode).first;
     certipose::solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
     if (mode == "paper") o.paving = certipose::paper_paving{};
     else if (mode == "inner") o.paving = certipose::carving{.occlusion_cuts = false, .corner_boxes = false};
@@ -140,7 +171,7 @@ certipose::solve_options mode_options(const std::string& mode) {
         o.refine = certipose::refinement{};
         o.grow = certipose::growth_options{};
     } else if (mode != "full") {
-        std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+        std::fprintf(stderr, "unknown mode %s\n", full_mode.c_str());
         std::exit(2);
     }
     return o;
@@ -162,8 +193,8 @@ int main(int argc, char** argv) {
         for (const auto& c : all) {
             const auto& mesh = c.mesh;
             const auto& in = c.input;
-            const solver_t solver(mesh, in.calibrated(), in.task);
             for (const auto& mode : modes) {
+                const solver_t solver(mesh, in.calibrated(), mode_task(in.task, mode));
                 double seconds = 0, volume = 0;
                 std::size_t facets = 0, valid = 0, boundary = 0;
                 for (std::size_t f = 0; f < mesh.num_faces(); f += every, ++facets) {
@@ -184,10 +215,11 @@ int main(int argc, char** argv) {
         const auto& mesh = c.mesh;
         const auto& in = c.input;
         const auto camera = in.calibrated();
-        const solver_t solver(mesh, camera, in.task);
-        const truth t = certipose::verify::sample_valid_positions(mesh, c.facet, solver.range().min, solver.range().max,
+        const solver_t nominal(mesh, camera, in.task);
+        const truth t = certipose::verify::sample_valid_positions(mesh, c.facet, nominal.range().min, nominal.range().max,
                                                                   in.task.min_view_angle, samples, 12345);
         for (const auto& mode : modes) {
+            const solver_t solver(mesh, camera, mode_task(in.task, mode));
             auto r = solver.solve(c.facet, mode_options(mode));
             double fastest = r.stats.seconds;  // the least of three runs: this machine's timing noise
             if (mode != "refine" && mode != "refine_grow")

@@ -1,11 +1,12 @@
 // certipose-part — certified camera pose boxes for every facet of a part (docs/part.md),
 // in parallel.
 //
-//   certipose-part --mesh PART --camera CAMERA.json --position-eps E --orientation-eps O --out DIR
+//   certipose-part --mesh PART --camera CAMERA --position-eps E --orientation-eps O --out DIR
 //                  [--threads N] [--facets 0,5,17-30] [--boundary] [--scale S]
 //                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
 //                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N]
-//                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]... [--quiet]
+//                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
+//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
 // restricted to the --keep-in / --keep-out camera regions before they are written
@@ -75,7 +76,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb";
     bool boundary = false, quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
-    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")->type_name("METRES")->required();
     app.add_option("--orientation-eps", orientation_eps, "orientation threshold, radians (paper: 0.38)")->type_name("RADIANS")->required();
     app.add_option("--out", out, "output folder (created if missing)")->type_name("DIR")->required();
@@ -122,7 +123,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!corner_depth.empty()) a.corner_depth = parse_corner_depth(corner_depth);
         if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
-        a.scene = parse_scene_options(scene);
+        a.scene = parse_scene_options(scene, a.camera);
         if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
         std::error_code ec;
         if (fs::exists(a.out, ec) && !fs::is_directory(a.out, ec))
@@ -293,7 +294,8 @@ int main(int argc, char** argv) {
         const certipose::triangle_mesh mesh = certipose::read_mesh(args->mesh, {.scale = args->scale});
         const scene extra = read_scene(args->scene, &stage);
         stage.done();
-        const certipose::camera_task input = certipose::read_camera_task(args->camera);
+        certipose::camera_task input = certipose_program::read_camera(args->camera, args->scene);
+        certipose_program::apply_placement(input.task, args->scene, mesh);
         if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, extra, signals, proc);
         if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, extra, signals, proc);
         return run<certipose::aabb_occlusion>(*args, mesh, input, extra, signals, proc);

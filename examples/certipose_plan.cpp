@@ -1,10 +1,11 @@
 // certipose-plan — the fewest camera boxes that certify a part (docs/coverage.md).
 //
-//   certipose-plan --mesh PART --camera CAMERA.json [--scale S]
+//   certipose-plan --mesh PART --camera CAMERA [--scale S]
 //                  (--part-results DIR | --position-eps E --orientation-eps O [--facets LIST])
 //                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
 //                  [--exact SECONDS]
 //                  [--threads N] [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
+//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--working-distance DMIN,DMAX --min-view-angle RAD]
 //                  --out PLAN.json [--ply PLAN.ply] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene (of the one-shot run and of every C(B));
@@ -80,7 +81,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         exact, threads, facets, tolerance;
     bool quiet = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
-    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
     app.add_option("--part-results", part_results, "a certipose-part output folder (summary.json, boxes.jsonl)")->type_name("DIR")->check(CLI::ExistingDirectory);
     app.add_option("--position-eps", position_eps, "one-shot mode: run the whole part first at this threshold (metres)")->type_name("METRES");
@@ -131,7 +132,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         }
         if (!exact.empty()) a.exact = parse_double("--exact", exact, "a positive finite number of seconds");
         if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
-        a.scene = parse_scene_options(scene);
+        a.scene = parse_scene_options(scene, a.camera);
         check_output("--out", a.out);
         if (!a.ply.empty()) check_output("--ply", a.ply);
         return a;
@@ -219,6 +220,17 @@ void check_run(const certipose::part_summary& run, const certipose::part_summary
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
             if (!same(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
+    // The lens: boxes certified through one distortion (or none) do not hold through another.
+    const auto lens = [&](const auto& cam) {
+        std::string s = "none";
+        if (cam.distortion) {
+            s.clear();
+            for (double k : cam.distortion->opencv()) s += (s.empty() ? "" : ",") + text(k);
+        }
+        return s + ", margin " + text(cam.image_margin_px) + " px";
+    };
+    if (!(a.distortion == b.distortion) || !same(a.image_margin_px, b.image_margin_px))
+        mismatch("camera.distortion_coefficients", lens(a), lens(b));
     if (!same(a.d_min, b.d_min) || !same(a.d_max, b.d_max))
         mismatch("camera distance range", text(a.d_min) + ".." + text(a.d_max), text(b.d_min) + ".." + text(b.d_max));
     // The mount offset changes no box (they are of the projection centre), but the plan's mount
@@ -229,6 +241,18 @@ void check_run(const certipose::part_summary& run, const certipose::part_summary
     }
     if (!same(run.task.min_view_angle, here.task.min_view_angle))
         mismatch("task.min_view_angle", text(run.task.min_view_angle), text(here.task.min_view_angle));
+    // Boxes certified for another placement tolerance (or none) are not this plan's: fewer
+    // placements than asked would be covered, or cameras lost to a tolerance not asked for.
+    if (!(run.task.placement == here.task.placement)) {
+        const auto tol = [&](const std::optional<certipose::placement_tolerance>& t) -> std::string {
+            if (!t) return "none";
+            std::string s = text(t->translation[0]) + "," + text(t->translation[1]) + "," + text(t->translation[2]) + "," +
+                            text(t->rotation);
+            if (t->datum) s += " about " + text(t->datum->x()) + "," + text(t->datum->y()) + "," + text(t->datum->z());
+            return s;
+        };
+        mismatch("task.placement_tolerance", tol(run.task.placement), tol(here.task.placement));
+    }
     if (!run.settings.occlusion_checked)
         throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "
                                                                         "its boxes certify no facet: run it with occlusion");
@@ -239,7 +263,8 @@ int run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-plan", args.quiet);
     stage.show("reading " + args.mesh.string());
     const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
-    const certipose::camera_task input = certipose::read_camera_task(args.camera);
+    certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
+    certipose_program::apply_placement(input.task, args.scene, mesh);
     const scene extra = read_scene(args.scene, &stage);
     stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
     const auto part = naming_occluders(args.scene, [&] {

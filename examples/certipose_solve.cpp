@@ -1,10 +1,11 @@
 // certipose-solve — certified camera pose boxes for one facet of a part (docs/io.md).
 //
-//   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
+//   certipose-solve --mesh PART --facet N --camera CAMERA --position-eps 0.1
 //                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
 //                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
 //                   [--time-limit SECONDS] [--occluder MESH[:SCALE]]... [--keep-in REGION]...
-//                   [--keep-out REGION]... [--quiet]
+//                   [--keep-out REGION]... [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
+//                   [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
 //
 // Reads the mesh, the --occluder meshes (added to the occlusion scene) and the camera/task JSON,
 // solves, restricts the VALID boxes to the --keep-in / --keep-out camera regions
@@ -112,6 +113,9 @@ std::string advice(certipose::boundary_reason why, const certipose_solve::argume
         case boundary_reason::camera_region:
             return "every VALID box left straddles a --keep-in or --keep-out surface; " + smaller_eps +
                    " for finer pieces, or check the regions";
+        case boundary_reason::placement:
+            return "every VALID box left fails under the part's placement tolerance; " + smaller_eps +
+                   " for finer pieces, or a smaller --part-tolerance";
     }
     return smaller_eps;
 }
@@ -155,7 +159,8 @@ int main(int argc, char** argv) {
         const certipose_program::scene scene = certipose_program::read_scene(args.scene, &stage);
         stage.done();
         (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
-        const certipose::camera_task input = certipose::read_camera_task(args.camera);
+        certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
+        certipose_program::apply_placement(input.task, args.scene, mesh);
 
         certipose::solve_options options;
         options.position_eps = args.position_eps;

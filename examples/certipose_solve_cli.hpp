@@ -1,11 +1,12 @@
 // examples/certipose_solve_cli.hpp — the command line of `certipose-solve` (CLI11).
 //
 // Usage (docs/io.md):
-//   certipose-solve --mesh PART --facet N --camera CAMERA.json --position-eps 0.1
+//   certipose-solve --mesh PART --facet N --camera CAMERA --position-eps 0.1
 //                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
 //                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
 //                   [--time-limit SECONDS] [--occluder MESH[:SCALE]]... [--keep-in REGION]...
-//                   [--keep-out REGION]... [--quiet]
+//                   [--keep-out REGION]... [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
+//                   [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
 // `parse_arguments` turns argv into `arguments` or into an exit code. Every mistake — unknown
 // or missing option, malformed number, non-positive threshold, missing input file, output
 // directory that does not exist — prints ONE line "certipose-solve: error: ..." on `err` and
@@ -53,7 +54,7 @@ inline const char* to_string(occlusion_mode m) noexcept {
 struct arguments {
     std::filesystem::path mesh;    ///< --mesh: OFF, OBJ, PLY or STL
     std::size_t facet = 0;         ///< --facet: face index in file order
-    std::filesystem::path camera;  ///< --camera: camera/task JSON (docs/io.md)
+    std::filesystem::path camera;  ///< --camera: camera/task JSON or calibration file (docs/io.md)
     double position_eps = 0.1;     ///< --position-eps, metres
     double orientation_eps = 0.38; ///< --orientation-eps, radians
     std::filesystem::path out;     ///< --out: result JSON
@@ -106,8 +107,8 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
     app.add_option("--facet", facet, "index of the facet of interest (file order, from 0)")
         ->type_name("N")
         ->required();
-    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")
-        ->type_name("CAMERA.json")
+    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")
+        ->type_name("CAMERA")
         ->required()
         ->check(CLI::ExistingFile);
     app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")
@@ -182,7 +183,7 @@ inline parse_outcome parse_arguments(int argc, const char* const* argv, std::ost
             detail::check_output("--ply", *a.ply);
             outputs.push_back({"--ply", *a.ply});
         }
-        a.scene = certipose_program::parse_scene_options(scene);
+        a.scene = certipose_program::parse_scene_options(scene, a.camera);
         std::vector<certipose::named_path> inputs{{"--mesh", a.mesh}, {"--camera", a.camera}};
         for (const auto& o : a.scene.occluders) inputs.push_back({"--occluder", o.path});
         // `--out part.off`, `--out ./camera.json`, `--ply` onto `--out`: refused, nothing run.

@@ -3,9 +3,10 @@
 // those not proven impossible, P(B), with the coverage interval [area(C), area(P)] / area; for an
 // exact pose, also the largest box around it that keeps every facet of C certified.
 //
-//   certipose-verify --mesh PART --camera CAMERA.json --poses POSES.json [--scale S]
+//   certipose-verify --mesh PART --camera CAMERA --poses POSES.json [--scale S]
 //                    [--out REPORT.json] [--no-tolerance] [--occluder MESH[:SCALE]]...
-//                    [--keep-in REGION]... [--keep-out REGION]... [--quiet]
+//                    [--keep-in REGION]... [--keep-out REGION]... [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
+//                    [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene. With --keep-in / --keep-out
 // (solver/camera_regions.hpp) every pose is first placed against the camera regions
@@ -58,7 +59,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     std::string mesh, camera, poses, out, scale;
     bool no_tolerance = false, quiet = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
-    app.add_option("--camera", camera, "camera/task JSON (docs/io.md)")->type_name("CAMERA.json")->required()->check(CLI::ExistingFile);
+    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--poses", poses, "exact poses or 6D boxes, or a PLAN.json (docs/coverage.md)")->type_name("POSES.json")->required()->check(CLI::ExistingFile);
     app.add_option("--scale", scale, "multiply mesh coordinates by S")->type_name("S");
     app.add_option("--out", out, "the report: each pose's certified and possible facets")->type_name("REPORT.json");
@@ -74,7 +75,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         a.quiet = quiet;
         if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
         if (!a.out.empty()) check_output("--out", a.out);
-        a.scene = parse_scene_options(scene);
+        a.scene = parse_scene_options(scene, a.camera);
         return a;
     } catch (const usage_error& e) {
         usage_failure("certipose-verify", e.what(), code);
@@ -105,7 +106,8 @@ int run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-verify", args.quiet);
     stage.show("reading " + args.mesh.string());
     const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
-    const certipose::camera_task input = certipose::read_camera_task(args.camera);
+    certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
+    certipose_program::apply_placement(input.task, args.scene, mesh);
     const std::vector<certipose::pose_input> poses = certipose::read_poses(args.poses);
     const scene extra = read_scene(args.scene, &stage);
     stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
@@ -122,6 +124,12 @@ int run(const arguments& args, const interruption& signals) {
     report["version"] = certipose::detail::json_io::format_version;
     report["mesh"] = {{"path", args.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.scale}};
     certipose::detail::json_io::put_scene(report, extra.record);  // "occluders", "keep_in", "keep_out"
+    // The placement tolerance every facet of "facets" is certified for (absent: nominal).
+    if (input.task.placement) {
+        nlohmann::ordered_json task;
+        certipose::detail::json_io::put_placement(task, input.task.placement);
+        report["placement_tolerance"] = task["placement_tolerance"];
+    }
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     std::vector<char> certified_any(mesh.num_faces(), 0);
     double union_area = 0;

@@ -13,7 +13,8 @@
 #include <exception>
 
 int main(int argc, char** argv) {
-    if (argc > 3) {
+    // An option (--help, -h) is not a file name to write the part to.
+    if (argc > 3 || (argc >= 2 && argv[1][0] == '-')) {
         std::fprintf(stderr, "usage: %s [OUTPUT.off [MAX_CELL_SIZE]]\n", argv[0]);
         return 2;
     }

@@ -9,12 +9,15 @@
 #include "program_support.hpp"
 
 #include <certipose/cgal.hpp>
+#include <certipose/io/json.hpp>
 #include <certipose/io/output_files.hpp>
 #include <certipose/io/scene_record.hpp>
 
 #include <cctype>
 #include <cstddef>
+#include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace certipose_program {
@@ -36,6 +39,33 @@ inline scene read_scene(const scene_arguments& args, stage_line* stage = nullptr
     }
     s.record.regions = args.regions;
     return s;
+}
+
+/// The --camera file as a camera_task: our camera/task JSON as read_camera_task reads it, or a
+/// calibration file (chosen by content, certipose::read_camera_input) with --working-distance and
+/// --min-view-angle (parse_scene_options made sure they are given exactly for a calibration file).
+/// io_error / invalid_argument name the file.
+inline certipose::camera_task read_camera(const std::filesystem::path& camera, const scene_arguments& args) {
+    auto input = certipose::read_camera_input(camera);
+    if (auto* task = std::get_if<certipose::camera_task>(&input)) return std::move(*task);
+    if (!args.working_distance || !args.min_view_angle)  // parse_scene_options checked this
+        throw certipose::invalid_argument("--working-distance", camera.string() +
+                                                                    ": a calibration file needs --working-distance and --min-view-angle");
+    certipose::inspection_task task;
+    task.min_view_angle = *args.min_view_angle;
+    try {
+        return certipose::camera_task_from_calibration(std::get<certipose::calibration>(input), *args.working_distance, task);
+    } catch (const certipose::invalid_argument& e) {
+        throw certipose::invalid_argument(e.field(), camera.string() + ": " + e.what());
+    }
+}
+
+/// The task with the run's placement tolerance: --part-tolerance / --datum when given (they
+/// replace the camera JSON's task.placement_tolerance), the datum resolved to the part's centroid
+/// when neither gives one, so that every output records the datum the boxes were certified about.
+inline void apply_placement(certipose::inspection_task& task, const scene_arguments& args, const certipose::triangle_mesh& mesh) {
+    if (args.placement) task.placement = *args.placement;
+    if (task.placement && !task.placement->datum) task.placement->datum = certipose::surface_centroid(mesh);
 }
 
 /// The --occluder files as inputs no output may overwrite.
@@ -76,6 +106,13 @@ inline std::string scene_text(const scene_arguments& args) {
     add(args.occluders.size(), "occluder");
     add(args.regions.keep_in.size(), "keep-in region");
     add(args.regions.keep_out.size(), "keep-out region");
+    if (args.placement) {
+        if (!s.empty()) s += ", ";
+        const auto& t = *args.placement;
+        s += "part tolerance " + certipose::detail::format_double(t.translation[0]) + "," +
+             certipose::detail::format_double(t.translation[1]) + "," + certipose::detail::format_double(t.translation[2]) +
+             " m, " + certipose::detail::format_double(t.rotation) + " rad";
+    }
     return s;
 }
 

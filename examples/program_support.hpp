@@ -18,16 +18,30 @@
 //                            a number that is not a positive finite factor is a usage error.
 //   --keep-out REGION        (repeatable) no camera position in REGION
 //   --keep-in REGION         (repeatable) camera positions only in the union of these REGIONs
+//   --part-tolerance TX,TY,TZ,ROT  the part may sit off its nominal placement by any translation
+//                            with |t_i| <= T_i (metres) combined with any rotation of at most ROT
+//                            radians about any axis through the datum: every VALID box holds for
+//                            every such placement (pose/placement_tolerance.hpp)
+//   --datum X,Y,Z            the point the part rotates about (default: the part's centroid)
+//   --working-distance DMIN,DMAX, --min-view-angle RAD  what a calibration file given as --camera
+//                            lacks (the camera JSON's d_min, d_max and task.min_view_angle):
+//                            required with a calibration file, refused with a camera JSON. The
+//                            file's kind is chosen by content (io/calibration.hpp `detect`), here
+//                            at parse time, so that either mistake is a usage error (exit 2).
 // REGION = box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or sphere:X,Y,Z,R (metres, the part's frame after
 // --scale; solver/camera_regions.hpp). Reading the occluders and naming them in the occlusion
 // policy's errors needs CGAL: program_scene.hpp.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <numbers>
 #include <stdexcept>
 #include <system_error>
 #include <chrono>
@@ -42,7 +56,10 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <certipose/camera/camera_model.hpp>
 #include <certipose/error.hpp>
+#include <certipose/io/calibration.hpp>
+#include <certipose/pose/placement_tolerance.hpp>
 #include <certipose/solver/camera_regions.hpp>
 #include <certipose/solver/paving.hpp>
 
@@ -185,11 +202,18 @@ struct occluder_arg {
 struct scene_arguments {
     std::vector<occluder_arg> occluders;
     certipose::camera_regions regions;
+    /// --part-tolerance and --datum (the datum unset: the part's centroid, set by apply_placement)
+    std::optional<certipose::placement_tolerance> placement;
+    /// --working-distance and --min-view-angle: set exactly when --camera is a calibration file
+    std::optional<certipose::distance_range> working_distance;
+    std::optional<double> min_view_angle;
 };
 
 /// The scene options as given (CLI11 fills them; parse_scene_options checks them).
 struct scene_options_text {
     std::vector<std::string> occluders, keep_in, keep_out;
+    std::string part_tolerance, datum;
+    std::string working_distance, min_view_angle;
 };
 
 /// MESH or MESH:SCALE (see the header comment); the file must exist, as --mesh's must.
@@ -239,14 +263,103 @@ inline void add_scene_options(CLI::App& app, scene_options_text& text) {
                    "camera positions only inside REGION (or another --keep-in; same syntax); repeatable")
         ->type_name("REGION")
         ->allow_extra_args(false);
+    app.add_option("--part-tolerance", text.part_tolerance,
+                   "the part may be off its nominal placement by |t_i| <= T_i metres and a rotation of at most ROT "
+                   "radians about the datum: every VALID box holds for every such placement")
+        ->type_name("TX,TY,TZ,ROT");
+    app.add_option("--datum", text.datum, "the point the part rotates about (metres, part frame after --scale; "
+                                          "default: the part's centroid); needs --part-tolerance")
+        ->type_name("X,Y,Z");
+    app.add_option("--working-distance", text.working_distance,
+                   "with a calibration file as --camera: the camera-to-facet distances DMIN,DMAX (metres) "
+                   "the image is in focus at (the camera JSON's d_min, d_max)")
+        ->type_name("DMIN,DMAX");
+    app.add_option("--min-view-angle", text.min_view_angle,
+                   "with a calibration file as --camera: the smallest angle (radians, [0, pi/2)) between the "
+                   "line of sight and the facet's plane (the camera JSON's task.min_view_angle)")
+        ->type_name("RAD");
 }
 
-/// The scene options checked (usage_error naming the offending text).
-inline scene_arguments parse_scene_options(const scene_options_text& text) {
+/// N comma-separated finite numbers, or a usage error naming the option and the text.
+template <std::size_t N>
+std::array<double, N> parse_numbers(const std::string& option, const std::string& text, const char* shape) {
+    std::array<double, N> out{};
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+        const std::size_t end = i + 1 < N ? text.find(',', at) : text.size();
+        if (end == std::string::npos)
+            throw usage_error(option + " " + text + ": expected " + shape + " (" + std::to_string(N) + " numbers)");
+        const std::string item = text.substr(at, end - at);
+        double v = 0.0;
+        const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+        if (item.empty() || ec != std::errc{} || ptr != item.data() + item.size() || !std::isfinite(v))
+            throw usage_error(option + " " + text + ": '" + item + "' is not a finite number (expected " + shape + ")");
+        out[i] = v;
+        at = end + 1;
+    }
+    return out;
+}
+
+/// True when the --camera file is a calibration file (OpenCV YAML/JSON, ROS camera_info) rather
+/// than our camera/task JSON: by content, as certipose::read_camera_input chooses. An unreadable
+/// file counts as a camera JSON; reading it later reports the error.
+inline bool is_calibration_file(const std::filesystem::path& camera) {
+    std::ifstream in(camera, std::ios::binary);
+    if (!in) return false;
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return certipose::detect(text) != certipose::calibration_format::unknown;
+}
+
+/// --working-distance and --min-view-angle against the kind of the --camera file (see the header
+/// comment): required with a calibration file, refused with a camera JSON.
+inline void parse_camera_options(const scene_options_text& text, const std::filesystem::path& camera, scene_arguments& s) {
+    const bool given_d = !text.working_distance.empty(), given_a = !text.min_view_angle.empty();
+    if (!is_calibration_file(camera)) {
+        if (given_d || given_a)
+            throw usage_error(std::string(given_d ? "--working-distance" : "--min-view-angle") + ": only with a calibration file as --camera; " +
+                              camera.string() + " is a camera/task JSON, which has its own d_min, d_max and task.min_view_angle");
+        return;
+    }
+    if (!given_d || !given_a)
+        throw usage_error("--camera " + camera.string() + " is a calibration file (no working distance or task): give " +
+                          (!given_d && !given_a ? "--working-distance DMIN,DMAX and --min-view-angle RAD"
+                           : !given_d          ? "--working-distance DMIN,DMAX"
+                                               : "--min-view-angle RAD"));
+    const auto d = parse_numbers<2>("--working-distance", text.working_distance, "DMIN,DMAX");
+    if (!(d[0] > 0.0 && d[0] < d[1]))
+        throw usage_error("--working-distance " + text.working_distance + ": expected 0 < DMIN < DMAX (metres)");
+    s.working_distance = certipose::distance_range{d[0], d[1]};
+    const double a = parse_number("--min-view-angle", text.min_view_angle, "a number of radians in [0, pi/2)");
+    if (!(a >= 0.0 && a < std::numbers::pi / 2))
+        throw usage_error("--min-view-angle " + text.min_view_angle + ": expected radians in [0, pi/2)" +
+                          (a >= std::numbers::pi / 2 && a <= 90.0 ? " (degrees?)" : ""));
+    s.min_view_angle = a;
+}
+
+/// The scene options checked (usage_error naming the offending text); `camera` is the --camera
+/// file, which decides whether --working-distance and --min-view-angle belong.
+inline scene_arguments parse_scene_options(const scene_options_text& text, const std::filesystem::path& camera) {
     scene_arguments s;
+    parse_camera_options(text, camera, s);
     for (const auto& o : text.occluders) s.occluders.push_back(parse_occluder(o));
     for (const auto& r : text.keep_in) s.regions.keep_in.push_back(parse_region("--keep-in", r));
     for (const auto& r : text.keep_out) s.regions.keep_out.push_back(parse_region("--keep-out", r));
+    if (!text.datum.empty() && text.part_tolerance.empty())
+        throw usage_error("--datum " + text.datum + ": needs --part-tolerance (a datum alone moves nothing)");
+    if (!text.part_tolerance.empty()) {
+        const auto v = parse_numbers<4>("--part-tolerance", text.part_tolerance, "TX,TY,TZ,ROT");
+        certipose::placement_tolerance t{.translation = {v[0], v[1], v[2]}, .rotation = v[3]};
+        if (!text.datum.empty()) {
+            const auto d = parse_numbers<3>("--datum", text.datum, "X,Y,Z");
+            t.datum = Eigen::Vector3d(d[0], d[1], d[2]);
+        }
+        try {
+            t.validate();
+        } catch (const certipose::invalid_argument& e) {
+            throw usage_error("--part-tolerance " + text.part_tolerance + ": " + e.what());
+        }
+        s.placement = t;
+    }
     return s;
 }
 

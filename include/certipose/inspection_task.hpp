@@ -1,5 +1,6 @@
 // certipose/inspection_task.hpp — what is asked of a view of one facet, besides the camera: the
-// viewing-angle threshold and an optional resolution requirement (paper §2).
+// viewing-angle threshold, an optional resolution requirement (paper §2) and an optional
+// tolerance on where the part sits.
 //
 // Below the constraint sets and the solver: both read it, and neither may include the other.
 #pragma once
@@ -10,6 +11,7 @@
 
 #include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
+#include "certipose/pose/placement_tolerance.hpp"
 
 namespace certipose {
 
@@ -20,6 +22,9 @@ struct inspection_task {
     double min_view_angle = 0.35;
     /// Optional resolution requirement r (metres on the part per pixel): caps d_max at r·f_px.
     std::optional<double> max_metres_per_pixel{};
+    /// Optional placement tolerance of the part (pose/placement_tolerance.hpp): a VALID box then
+    /// holds for every placement of the part it admits. Unset or none(): the nominal placement.
+    std::optional<placement_tolerance> placement{};
 
     void validate() const {
         if (!(min_view_angle >= 0.0) || !(min_view_angle < std::numbers::pi / 2))
@@ -29,6 +34,7 @@ struct inspection_task {
             throw invalid_argument("max_metres_per_pixel",
                                    "inspection_task: max_metres_per_pixel must be positive and finite, got " +
                                        detail::format_double(*max_metres_per_pixel));
+        if (placement) placement->validate();
     }
 };
 

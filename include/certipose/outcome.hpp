@@ -62,7 +62,8 @@ inline const char* to_string(termination t) noexcept {
 /// Why a BOUNDARY box was left undecided: a constraint (docs/conventions.md) that could be proven
 /// neither true nor false over the whole box — the first one the set checks that way (the
 /// paper's set: backface, viewing angle, d_max, facet contact, d_min) — or the budget that ended
-/// the run first, or (after the solve) the surface of a camera region.
+/// the run first, or (after the solve) the surface of a camera region or the part's placement
+/// tolerance.
 enum class boundary_reason : std::uint8_t {
     facet_contact,  ///< constraint 1: the box may touch the facet
     distance,       ///< constraint 2: d_min ≤ ‖p − q‖ ≤ d_max undecided (focus, resolution)
@@ -74,9 +75,13 @@ enum class boundary_reason : std::uint8_t {
     budget,         ///< not decided: a box budget, deadline or cancellation ended the run
     /// a piece of a VALID box straddling a keep-in or keep-out region's surface at the regions'
     /// minimum width (solver/camera_regions.hpp): certified, but not every position is allowed
-    camera_region
+    camera_region,
+    /// a piece of a VALID box not proven for every placement of the part its placement
+    /// tolerance admits, at the placement stage's minimum width (solver/placement_stage.hpp):
+    /// certified for the nominal placement only
+    placement
 };
-inline constexpr std::size_t boundary_reason_count = 9;
+inline constexpr std::size_t boundary_reason_count = 10;
 
 /// "facet_contact", "distance", ... (JSON, messages).
 constexpr std::string_view to_string(boundary_reason r) noexcept {
@@ -90,6 +95,7 @@ constexpr std::string_view to_string(boundary_reason r) noexcept {
         case boundary_reason::field_of_view: return "field_of_view";
         case boundary_reason::budget: return "budget";
         case boundary_reason::camera_region: return "camera_region";
+        case boundary_reason::placement: return "placement";
     }
     return "?";
 }

@@ -195,6 +195,50 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
         {"camera JSON unknown field", [&] {
              certipose::parse_camera_task(R"({"camera": {"model": "thin_lens", "focal_lenght": 0.012}, "task": {}})", "camera.json");
          }},
+        {"distortion coefficient count", [&] {
+             certipose::parse_camera_task(R"({"camera": {"model": "pinhole", "focal_length": 0.012, "pixel_pitch": 3.45e-6,
+                 "width_px": 2448, "height_px": 2048, "d_min": 0.2, "d_max": 1, "distortion_coefficients": [0.1, 0.2, 0]},
+                 "task": {"min_view_angle": 0.35}})", "camera.json");
+         }},
+        {"distortion beyond certification", [&] {
+             certipose::parse_camera_task(R"({"camera": {"model": "pinhole", "focal_length": 0.012, "pixel_pitch": 3.45e-6,
+                 "width_px": 2448, "height_px": 2048, "d_min": 0.2, "d_max": 1, "distortion_coefficients": [0, 0, 0, 0, 0, -1e9, 0, 0]},
+                 "task": {"min_view_angle": 0.35}})", "camera.json");
+         }},
+        {"image margin too large", [&] {
+             certipose::parse_camera_task(R"({"camera": {"model": "pinhole", "focal_length": 0.012, "pixel_pitch": 3.45e-6,
+                 "width_px": 2448, "height_px": 2048, "d_min": 0.2, "d_max": 1, "image_margin_px": 1100},
+                 "task": {"min_view_angle": 0.35}})", "camera.json");
+         }},
+        {"calibration and sensor field both given", [&] {
+             certipose::parse_camera_task(R"({"camera": {"model": "pinhole", "calibration": "cal.yaml", "width_px": 2448,
+                 "d_min": 0.2, "d_max": 1}, "task": {"min_view_angle": 0.35}})", "camera.json");
+         }},
+        {"calibration file not a calibration", [&] { certipose::read_calibration(file("notes.yaml", "hello: world\n")); }},
+        {"calibration YAML syntax", [&] { certipose::read_calibration(file("broken.yaml", "camera_name: x\ncamera_matrix: [1, [2\n")); }},
+        {"calibration fisheye", [&] {
+             certipose::read_calibration(file("fisheye.yaml", "image_width: 640\nimage_height: 480\ncamera_name: c\n"
+                                                              "camera_matrix: {rows: 3, cols: 3, data: [500, 0, 320, 0, 500, 240, 0, 0, 1]}\n"
+                                                              "distortion_model: equidistant\n"
+                                                              "distortion_coefficients: {rows: 1, cols: 4, data: [0, 0, 0, 0]}\n"));
+         }},
+        {"calibration matrix size", [&] {
+             certipose::read_calibration(file("rows.yaml", "image_width: 640\nimage_height: 480\ncamera_name: c\n"
+                                                           "camera_matrix: {rows: 3, cols: 3, data: [500, 0, 320, 0, 500, 240]}\n"
+                                                           "distortion_model: plumb_bob\n"
+                                                           "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n"));
+         }},
+        {"calibration principal point outside", [&] {
+             certipose::read_calibration(file("pp.yaml", "image_width: 640\nimage_height: 480\ncamera_name: c\n"
+                                                         "camera_matrix: {rows: 3, cols: 3, data: [500, 0, 700, 0, 500, 240, 0, 0, 1]}\n"
+                                                         "distortion_model: plumb_bob\n"
+                                                         "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n"));
+         }},
+        {"calibration key missing", [&] {
+             certipose::read_calibration(file("nokey.yaml", "image_width: 640\nimage_height: 480\ncamera_name: c\n"
+                                                            "distortion_model: plumb_bob\n"
+                                                            "distortion_coefficients: {rows: 1, cols: 5, data: [0, 0, 0, 0, 0]}\n"));
+         }},
         {"bad position threshold", [&] { certipose::solve_options{.position_eps = 0.0}.validate(); }},
         {"bad orientation threshold", [&] { certipose::solve_options{.orientation_eps = std::nan("")}.validate(); }},
         {"bad corner depth", [&] {
@@ -231,6 +275,19 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
          }},
         {"document of another format", [&] {
              certipose::read_plan(file("format.json", R"({"format": "certipose-result", "version": 1})"));
+         }},
+        {"placement tolerance negative", [] {
+             const certipose::placement_tolerance t{.translation = {0.001, -0.001, 0}};
+             t.validate();
+         }},
+        {"placement tolerance in degrees", [] {
+             const certipose::placement_tolerance t{.rotation = 2};
+             t.validate();
+         }},
+        {"camera JSON placement tolerance", [] {
+             certipose::parse_camera_task(R"({"camera": {"model": "pinhole", "focal_length": 0.012, "pixel_pitch": 3.45e-6,
+                 "width_px": 2448, "height_px": 2048, "d_min": 0.4, "d_max": 0.8},
+                 "task": {"min_view_angle": 0.35, "placement_tolerance": {"translation": [0.001, 0.001, 0.001], "rotation": -0.01}}})");
          }},
         {"output is an input", [&] {
              certipose::refuse_overwriting_inputs({{"--mesh", file("part.off", tetra_off)}}, {{"--out", dir / "." / "part.off"}});

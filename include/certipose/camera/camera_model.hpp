@@ -53,6 +53,35 @@ concept CameraModel = requires(const C& c) {
     { c.distance_range() } -> std::convertible_to<certipose::distance_range>;
 };
 
+/// The image the solver certifies the field of view against, as an ideal pinhole camera's: a
+/// point q (camera coordinates) is in it when q_z > 0 and 0 ≤ (Kq)_x ≤ w·q_z, 0 ≤ (Kq)_y ≤ h·q_z
+/// (docs/conventions.md, constraint 5). For a camera without lens distortion it is the camera's
+/// own K and image size; a distorted camera gives a smaller pinhole image whose every ray is
+/// proven to land inside the real image (camera/distortion.hpp).
+struct pinhole_image {
+    Eigen::Matrix3d K;
+    double width_px;
+    double height_px;
+};
+
+/// A camera model whose certified image differs from its intrinsics (lens distortion).
+template <class C>
+concept HasImageRegion = requires(const C& c) {
+    { c.image_region() } -> std::convertible_to<pinhole_image>;
+};
+
+/// The image the solver certifies against: `c.image_region()` when the model has one, else the
+/// model's own K, width and height. Every field-of-view proof (orientation/certify.hpp) and
+/// every cull built on the image's angles reads the camera through this function, never through
+/// intrinsics() directly, so that a distorted camera is certified against its proven region.
+template <CameraModel C>
+pinhole_image certified_image(const C& c) {
+    if constexpr (HasImageRegion<C>)
+        return c.image_region();
+    else
+        return {c.intrinsics(), c.width_px(), c.height_px()};
+}
+
 namespace detail::camera {
 
 [[noreturn]] inline void fail(std::string_view who, std::string_view field, std::string_view rule,

@@ -78,9 +78,11 @@ public:
             radius_.push_back(r);
         }
         // The largest angle between the optical axis and a ray through the image (a corner).
-        const Eigen::Matrix3d Kinv = solver.camera().intrinsics().inverse();
-        for (const double u : {0.0, solver.camera().width_px()})
-            for (const double v : {0.0, solver.camera().height_px()}) {
+        // The certified image (camera_model.hpp): a distorted camera sees only its proven region.
+        const pinhole_image image = certified_image(solver.camera());
+        const Eigen::Matrix3d Kinv = image.K.inverse();
+        for (const double u : {0.0, image.width_px})
+            for (const double v : {0.0, image.height_px}) {
                 const Eigen::Vector3d ray = Kinv * Eigen::Vector3d(u, v, 1.0);
                 corner_angle_ = std::max(corner_angle_, std::atan2(ray.head<2>().norm(), ray.z()));
             }
@@ -189,12 +191,19 @@ private:
 
     // Steps 2–3 of the header comment for one facet.
     decision decide(const pose_box<interval_type>& box, std::size_t f) {
-        const verdict v = detail::prove_position_set(set(f), box.position);
+        // With a placement tolerance, the proofs cover every admitted placement, as the
+        // solver's certifier does (solver/detail/box_certifier.hpp).
+        const placement_scene* moving = solver_->placement_proofs();
+        const facet& target = solver_->part().facet(f);
+        const position_box<interval_type> in_part = moving ? camera_reach(box.position, moving->tolerance) : box.position;
+        const std::array<double, 3> reach = moving ? facet_reach<interval_type>(target.v, moving->tolerance)
+                                                   : std::array<double, 3>{};
+        const verdict v = detail::prove_position_set(set(f), in_part);
         if (v == verdict::violated) {
             ++stats_.by_constraints;
             return decision::impossible;
         }
-        const verdict fov = certify_fov(box.position, box.orientation, solver_->part().facet(f), frustum_);
+        const verdict fov = certify_fov(moving ? grown(box.position, reach) : box.position, box.orientation, target, frustum_);
         if (fov == verdict::violated) {
             ++stats_.by_field_of_view;
             return decision::impossible;
@@ -202,8 +211,10 @@ private:
         if (v != verdict::satisfied || fov != verdict::satisfied) return decision::possible;
         ++stats_.occlusion_tests;
         if (cache_.size() > max_cached_shadows) cache_.clear();  // bounded memory over many boxes
-        return detail::prove_visible(solver_->occlusion(), box.position, f, cache_) ? decision::certified
-                                                                                    : decision::possible;
+        if (!detail::prove_visible(solver_->occlusion(), in_part, f, cache_)) return decision::possible;
+        if (moving && !sight_region_clear(box.position, target.v, target.normal, reach, moving->fixed))
+            return decision::possible;
+        return decision::certified;
     }
 
     // Facet f's position constraint set, built the first time a box reaches step 2 for it: most

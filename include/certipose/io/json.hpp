@@ -23,6 +23,7 @@
 #include "certipose/camera/calibrated_camera.hpp"
 #include "certipose/error.hpp"
 #include "certipose/interval/detail/fenv.hpp"
+#include "certipose/io/calibration.hpp"
 #include "certipose/io/result_document.hpp"
 #include "certipose/io/write_file.hpp"
 #include "certipose/solver/result.hpp"
@@ -74,9 +75,22 @@ struct camera_task {
     /// "camera.mount_offset": the projection centre in the mount frame (axes: the camera's
     /// optical frame; origin: the mount point), metres; zero when the file gives none.
     std::array<double, 3> mount_offset{};
+    /// "camera.distortion_coefficients" (or the calibration file's): the lens distortion, if any.
+    std::optional<brown_conrady> distortion{};
+    /// "camera.image_margin_px": pixels kept free along the image's edges (default 0).
+    double image_margin_px = 0.0;
 
-    /// `certipose::calibrated(camera)`.
-    calibrated_camera calibrated() const { return certipose::calibrated(camera); }
+    /// The camera as the solver reads it: `certipose::calibrated(camera)`, or, with distortion or
+    /// a margin, the calibrated_camera of `distorted_camera(camera, distortion, image_margin_px)`
+    /// (its certified image computed here, a few milliseconds). Throws invalid_argument naming
+    /// "distortion_coefficients" / "image_margin_px" when no image region can be certified.
+    calibrated_camera calibrated() const {
+        if (!distortion && image_margin_px == 0.0) return certipose::calibrated(camera);
+        const brown_conrady d = distortion.value_or(brown_conrady{});
+        return std::visit(
+            [&](const auto& c) { return calibrated_camera(distorted_camera(c, d, image_margin_px), model_name(camera)); },
+            camera);
+    }
 };
 
 namespace detail::json_io {
@@ -411,15 +425,40 @@ inline std::array<double, 3> mount_offset_from_json(const json& camera, const st
 
 // ==== camera/task input ========================================================================
 
-/// The "camera" object of the input JSON (all fields in docs/io.md). `path` is
-/// the JSON path used in error messages.
-inline any_camera camera_from_json(const nlohmann::json& j, const std::string& path = "camera") {
-    using namespace detail::json_io;
+namespace detail::json_io {
+
+/// What the "camera" object gives: the model, and the lens distortion and image margin that
+/// camera_task keeps beside it.
+struct camera_input {
+    any_camera camera;
+    std::optional<brown_conrady> distortion{};
+    double image_margin_px = 0.0;
+};
+
+/// Reads the "camera" object; `base_dir` resolves a relative "calibration" path (see docs/io.md).
+inline camera_input read_camera(const json& j, const std::string& path, const std::filesystem::path& base_dir) {
     const certipose::detail::round_to_nearest_scope nearest;
     require_object(j, path);
     const std::string model =
         as_string(require(j, path, "model", "\"thin_lens\" or \"pinhole\""), child(path, "model"),
                   "a string (\"thin_lens\" or \"pinhole\")");
+    if (model != "thin_lens" && model != "pinhole")
+        fail(child(path, "model"), "unknown camera model \"" + model + "\" (expected \"thin_lens\" or \"pinhole\")");
+    const bool thin_lens = model == "thin_lens";
+    if (thin_lens)
+        reject_unknown(j, path,
+                       {"model", "focal_length", "f_stop", "focus_distance", "max_blur_circle", "max_blur_px",
+                        "pixel_pitch", "width_px", "height_px", "principal_point_px", "skew", "aspect",
+                        "distortion_coefficients", "image_margin_px", "calibration", "mount_offset"},
+                       "thin_lens camera");
+    else
+        reject_unknown(j, path,
+                       {"model", "focal_length", "pixel_pitch", "width_px", "height_px", "principal_point_px", "skew",
+                        "aspect", "d_min", "d_max", "distortion_coefficients", "image_margin_px", "calibration",
+                        "mount_offset"},
+                       "pinhole camera");
+    (void)mount_offset_from_json(j, path);  // not the model's: camera_task keeps it
+    std::optional<brown_conrady> distortion;
     // Optional fields mirror the C++ defaults; null means "use the default" too.
     const auto principal_point = [&]() -> std::optional<Eigen::Vector2d> {
         const json* v = find(j, "principal_point_px");
@@ -427,48 +466,152 @@ inline any_camera camera_from_json(const nlohmann::json& j, const std::string& p
         const auto a = as_numbers<2>(*v, child(path, "principal_point_px"));
         return Eigen::Vector2d(a[0], a[1]);
     };
-    // The sensor fields every built-in model has (detail::camera::sensor).
+    const json* calibration_ref = find(j, "calibration");
+    if (calibration_ref && calibration_ref->is_null()) calibration_ref = nullptr;
+    // The sensor fields every built-in model has (detail::camera::sensor), from the file or from
+    // the calibration: K's fx, skew, cx, fy, cy and the image size; the metres need one of
+    // focal_length or pixel_pitch (pixel_pitch = focal_length / fx). The model recomputes its K
+    // from them, so K(0,0) = focal_length / pixel_pitch may differ from fx in the last bit.
     const auto read_sensor = [&](auto& p) {
-        p.focal_length = required_number(j, path, "focal_length");
-        p.pixel_pitch = required_number(j, path, "pixel_pitch");
-        p.width_px = required_number(j, path, "width_px");
-        p.height_px = required_number(j, path, "height_px");
-        p.principal_point_px = principal_point();
-        p.skew = optional_number(j, path, "skew").value_or(0.0);
-        p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+        if (!calibration_ref) {
+            p.focal_length = required_number(j, path, "focal_length");
+            p.pixel_pitch = required_number(j, path, "pixel_pitch");
+            p.width_px = required_number(j, path, "width_px");
+            p.height_px = required_number(j, path, "height_px");
+            p.principal_point_px = principal_point();
+            p.skew = optional_number(j, path, "skew").value_or(0.0);
+            p.aspect = optional_number(j, path, "aspect").value_or(1.0);
+            return;
+        }
+        const std::string where = child(path, "calibration");
+        const std::string file = as_string(*calibration_ref, where, "a file name (string)");
+        for (std::string_view key : {"width_px", "height_px", "principal_point_px", "skew", "aspect",
+                                     "distortion_coefficients"})
+            if (find(j, key))
+                fail(child(path, key), "comes from the calibration file (" + where + "): remove it");
+        const std::optional<double> f = optional_number(j, path, "focal_length");
+        const std::optional<double> pitch = optional_number(j, path, "pixel_pitch");
+        if (f && pitch)
+            fail(child(path, "pixel_pitch"),
+                 "with a calibration file give focal_length or pixel_pitch, not both (pixel_pitch = focal_length / fx)");
+        if (!f && !pitch && thin_lens)
+            fail(child(path, "focal_length"),
+                 "missing required field: a thin_lens camera with a calibration file needs focal_length or "
+                 "pixel_pitch (metres)");
+        std::filesystem::path file_path(file);
+        if (file_path.is_relative()) file_path = base_dir / file_path;
+        const calibration c = read_calibration(file_path);
+        const double fx = c.K(0, 0);
+        // A pinhole without metres: any pitch gives the same K (focal_length = fx · pitch).
+        p.pixel_pitch = pitch ? *pitch : f ? *f / fx : 1e-6;
+        p.focal_length = f ? *f : p.pixel_pitch * fx;
+        p.width_px = c.width_px;
+        p.height_px = c.height_px;
+        p.principal_point_px = Eigen::Vector2d(c.K(0, 2), c.K(1, 2));
+        p.skew = c.K(0, 1);
+        p.aspect = c.K(1, 1) / fx;
+        if (!c.distortion.is_zero()) distortion = c.distortion;
     };
-    if (model == "thin_lens") {
-        reject_unknown(j, path,
-                       {"model", "focal_length", "f_stop", "focus_distance", "max_blur_circle",
-                        "pixel_pitch", "width_px", "height_px", "principal_point_px", "skew",
-                        "aspect", "mount_offset"},
-                       "thin_lens camera");
-        (void)mount_offset_from_json(j, path);  // not the model's: camera_task keeps it
-        thin_lens_parameters p;
-        read_sensor(p);
-        p.f_stop = required_number(j, path, "f_stop");
-        p.focus_distance = required_number(j, path, "focus_distance");
-        p.max_blur_circle = required_number(j, path, "max_blur_circle");
-        return checked_by_model(path, [&] { return any_camera(thin_lens_camera(p)); });
-    }
-    if (model == "pinhole") {
-        reject_unknown(j, path,
-                       {"model", "focal_length", "pixel_pitch", "width_px", "height_px",
-                        "principal_point_px", "skew", "aspect", "d_min", "d_max", "mount_offset"},
-                       "pinhole camera");
-        (void)mount_offset_from_json(j, path);
+    if (!calibration_ref)
+        if (const json* v = find(j, "distortion_coefficients"); v && !v->is_null()) {
+            const std::string where = child(path, "distortion_coefficients");
+            if (!v->is_array() || (v->size() != 4 && v->size() != 5 && v->size() != 8))
+                fail(where, "expected an array of 4, 5 or 8 numbers (OpenCV order k1, k2, p1, p2[, k3[, k4, k5, k6]]), got " +
+                                describe(*v));
+            std::vector<double> c;
+            for (std::size_t i = 0; i < v->size(); ++i) c.push_back(as_number((*v)[i], element(where, i)));
+            const brown_conrady d = checked_by_model(path, [&] { return brown_conrady::from_opencv(c); });
+            if (!d.is_zero()) distortion = d;
+        }
+    const double margin = optional_number(j, path, "image_margin_px").value_or(0.0);
+    if (!(margin >= 0.0) || !std::isfinite(margin))
+        fail(child(path, "image_margin_px"),
+             "must be a finite number of pixels >= 0, got " + detail::format_double(margin));
+    const auto make_camera = [&]() -> any_camera {
+        if (thin_lens) {
+            thin_lens_parameters p;
+            read_sensor(p);
+            p.f_stop = required_number(j, path, "f_stop");
+            p.focus_distance = required_number(j, path, "focus_distance");
+            // The acceptable blur in metres on the sensor, or in pixels (times the pixel pitch).
+            const std::optional<double> blur = optional_number(j, path, "max_blur_circle");
+            const std::optional<double> blur_px = optional_number(j, path, "max_blur_px");
+            if (blur && blur_px) fail(child(path, "max_blur_px"), "give max_blur_circle (metres) or max_blur_px (pixels), not both");
+            if (!blur && !blur_px)
+                fail(child(path, "max_blur_circle"), "missing required field (a number of metres, or max_blur_px in pixels)");
+            if (blur_px && !(*blur_px > 0.0 && std::isfinite(*blur_px)))
+                fail(child(path, "max_blur_px"), "must be positive and finite, got " + detail::format_double(*blur_px));
+            p.max_blur_circle = blur ? *blur : *blur_px * p.pixel_pitch;
+            return checked_by_model(path, [&] { return any_camera(thin_lens_camera(p)); });
+        }
         pinhole_parameters p;
         read_sensor(p);
         // A pinhole has no depth of field, so the working distances must be stated; d_max may
         // be null for "unbounded" (JSON has no infinity).
         p.d_min = required_number(j, path, "d_min");
         const json& d_max = require(j, path, "d_max", "a number, or null for unbounded");
-        p.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity()
-                                  : as_number(d_max, child(path, "d_max"));
+        p.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity() : as_number(d_max, child(path, "d_max"));
         return checked_by_model(path, [&] { return any_camera(pinhole_camera(p)); });
+    };
+    camera_input out{make_camera(), distortion, margin};
+    // The certified image is proven here, so that a distortion no image region survives is an
+    // error of this field, not of the solver's construction.
+    if (distortion || margin != 0.0)
+        checked_by_model(path, [&] {
+            return std::visit(
+                [&](const auto& c) {
+                    (void)distorted_camera(c, distortion.value_or(brown_conrady{}), margin);
+                    return 0;
+                },
+                out.camera);
+        });
+    return out;
+}
+
+/// "placement_tolerance": {"translation": [tx, ty, tz], "rotation": r, "datum": [x, y, z] | null}
+/// of a task object (pose/placement_tolerance.hpp); absent or null: none. Values are validated
+/// and errors name the JSON path ("task.placement_tolerance.rotation").
+inline std::optional<placement_tolerance> placement_from_json(const json& task, const std::string& path) {
+    const json* v = find(task, "placement_tolerance");
+    if (!v || v->is_null()) return std::nullopt;
+    const std::string here = child(path, "placement_tolerance");
+    require_object(*v, here);
+    reject_unknown(*v, here, {"translation", "rotation", "datum"}, "placement_tolerance");
+    placement_tolerance t;
+    t.translation = as_numbers<3>(require(*v, here, "translation", "3 numbers (metres)"), child(here, "translation"));
+    t.rotation = required_number(*v, here, "rotation");
+    if (const json* d = find(*v, "datum"); d && !d->is_null()) {
+        const auto a = as_numbers<3>(*d, child(here, "datum"));
+        t.datum = Eigen::Vector3d(a[0], a[1], a[2]);
     }
-    fail(child(path, "model"),
-         "unknown camera model \"" + model + "\" (expected \"thin_lens\" or \"pinhole\")");
+    checked_by_model(path, [&] {  // its fields are named "placement_tolerance.<field>"
+        t.validate();
+        return 0;
+    });
+    return t;
+}
+
+/// Writes "placement_tolerance" into a task object when there is one.
+inline void put_placement(ordered_json& task, const std::optional<placement_tolerance>& t) {
+    if (!t) return;
+    ordered_json p;
+    p["translation"] = numbers(t->translation, "task.placement_tolerance.translation");
+    p["rotation"] = finite(t->rotation, "task.placement_tolerance.rotation");
+    p["datum"] = t->datum ? numbers(std::array<double, 3>{t->datum->x(), t->datum->y(), t->datum->z()},
+                                    "task.placement_tolerance.datum")
+                          : ordered_json(nullptr);
+    task["placement_tolerance"] = std::move(p);
+}
+
+}  // namespace detail::json_io
+
+/// The "camera" object of the input JSON (all fields in docs/io.md). `path` is
+/// the JSON path used in error messages. The lens distortion and image margin are not part of the
+/// model: camera_task keeps them (camera_task_from_json). A relative "calibration" path is
+/// resolved against `base_dir` (the JSON file's directory; empty: the working directory).
+inline any_camera camera_from_json(const nlohmann::json& j, const std::string& path = "camera",
+                                   const std::filesystem::path& base_dir = {}) {
+    return detail::json_io::read_camera(j, path, base_dir).camera;
 }
 
 /// The "task" object of the input JSON.
@@ -476,10 +619,11 @@ inline inspection_task task_from_json(const nlohmann::json& j, const std::string
     using namespace detail::json_io;
     const certipose::detail::round_to_nearest_scope nearest;
     require_object(j, path);
-    reject_unknown(j, path, {"min_view_angle", "max_metres_per_pixel"}, "task");
+    reject_unknown(j, path, {"min_view_angle", "max_metres_per_pixel", "placement_tolerance"}, "task");
     inspection_task t;
     t.min_view_angle = required_number(j, path, "min_view_angle");
     t.max_metres_per_pixel = optional_number(j, path, "max_metres_per_pixel");
+    t.placement = placement_from_json(j, path);
     checked_by_model(path, [&] {
         t.validate();
         return 0;
@@ -489,22 +633,26 @@ inline inspection_task task_from_json(const nlohmann::json& j, const std::string
 
 /// The whole input document {"version": 1, "camera": {...}, "task": {...}}; camera and task are
 /// required, "version" is optional (1 is the only one).
-inline camera_task camera_task_from_json(const nlohmann::json& j) {
+/// A relative "camera.calibration" path is resolved against `base_dir`.
+inline camera_task camera_task_from_json(const nlohmann::json& j, const std::filesystem::path& base_dir = {}) {
     using namespace detail::json_io;
     require_object(j, "");
     reject_unknown(j, "", {"version", "camera", "task"}, "top-level");
     check_version(j);
     const json& camera_json = require(j, "", "camera", "an object");
-    any_camera camera = camera_from_json(camera_json, "camera");
+    camera_input camera = read_camera(camera_json, "camera", base_dir);
     inspection_task task = task_from_json(require(j, "", "task", "an object"), "task");
-    return {std::move(camera), task, mount_offset_from_json(camera_json, "camera")};
+    return {std::move(camera.camera), task, mount_offset_from_json(camera_json, "camera"), camera.distortion,
+            camera.image_margin_px};
 }
 
 /// Parses the input JSON from text. `source` (a file name) prefixes messages and is the
-/// io_error path; empty for none.
-inline camera_task parse_camera_task(std::string_view text, const std::string& source = {}) {
+/// io_error path; empty for none. `base_dir` resolves a relative "camera.calibration" path
+/// (read_camera_task passes the file's directory).
+inline camera_task parse_camera_task(std::string_view text, const std::string& source = {},
+                                     const std::filesystem::path& base_dir = {}) {
     return detail::json_io::with_source(source, [&] {
-        return camera_task_from_json(detail::json_io::parse(text, source));
+        return camera_task_from_json(detail::json_io::parse(text, source), base_dir);
     });
 }
 
@@ -513,7 +661,40 @@ inline camera_task parse_camera_task(std::string_view text, const std::string& s
 /// name) for schema errors and impossible values.
 inline camera_task read_camera_task(const std::filesystem::path& path) {
     return parse_camera_task(detail::json_io::read_text_file(path, "read_camera_task"),
-                             path.string());
+                             path.string(), path.parent_path());
+}
+
+/// A pinhole camera_task from a calibration read directly (no camera JSON): K, the image size
+/// and the distortion from the file, `working` as [d_min, d_max] (metres) and `task`. The pinhole
+/// model's K is all that matters, so the pixel pitch is an arbitrary 1e-6 m with focal_length =
+/// fx · 1e-6 (K(0,0) = focal_length / pixel_pitch may differ from fx in the last bit).
+/// Throws invalid_argument naming the camera field ("d_min", ...) for impossible values.
+inline camera_task camera_task_from_calibration(const calibration& c, distance_range working, inspection_task task) {
+    pinhole_parameters p;
+    p.pixel_pitch = 1e-6;
+    p.focal_length = c.K(0, 0) * p.pixel_pitch;
+    p.width_px = c.width_px;
+    p.height_px = c.height_px;
+    p.principal_point_px = Eigen::Vector2d(c.K(0, 2), c.K(1, 2));
+    p.skew = c.K(0, 1);
+    p.aspect = c.K(1, 1) / c.K(0, 0);
+    p.d_min = working.min;
+    p.d_max = working.max;
+    task.validate();
+    camera_task out{any_camera(pinhole_camera(p)), task};
+    if (!c.distortion.is_zero()) out.distortion = c.distortion;
+    (void)out.calibrated();  // proves the certified image now (throws distortion_coefficients)
+    return out;
+}
+
+/// A camera input file, chosen by content: our camera/task JSON (a top-level "camera" object)
+/// or a calibration file (OpenCV YAML/JSON, ROS camera_info). Throws what read_camera_task or
+/// parse_calibration throws.
+inline std::variant<camera_task, calibration> read_camera_input(const std::filesystem::path& path) {
+    const std::string text = detail::json_io::read_text_file(path, "read_camera_input");
+    if (detect(text) == calibration_format::unknown)
+        return parse_camera_task(text, path.string(), path.parent_path());
+    return parse_calibration(text, path.string());
 }
 
 /// The input JSON for a camera and task (every field written, defaults included), e.g. to
@@ -546,6 +727,14 @@ inline nlohmann::ordered_json camera_task_to_json(const camera_task& in) {
         cam["d_min"] = finite(p.distance_range().min, "camera.d_min");
         cam["d_max"] = finite_or_unbounded(p.distance_range().max, "camera.d_max");
     }
+    if (in.distortion) {
+        ordered_json d = ordered_json::array();
+        const auto c = in.distortion->opencv();
+        for (std::size_t i = 0; i < in.distortion->count(); ++i)
+            d.push_back(finite(c[i], element("camera.distortion_coefficients", i)));
+        cam["distortion_coefficients"] = std::move(d);
+    }
+    if (in.image_margin_px != 0.0) cam["image_margin_px"] = finite(in.image_margin_px, "camera.image_margin_px");
     if (in.mount_offset != std::array<double, 3>{}) cam["mount_offset"] = numbers(in.mount_offset, "camera.mount_offset");
     ordered_json task;
     task["min_view_angle"] = finite(in.task.min_view_angle, "task.min_view_angle");
@@ -553,6 +742,7 @@ inline nlohmann::ordered_json camera_task_to_json(const camera_task& in) {
         in.task.max_metres_per_pixel
             ? finite_or_unbounded(*in.task.max_metres_per_pixel, "task.max_metres_per_pixel")
             : ordered_json(nullptr);
+    put_placement(task, in.task.placement);
     return {{"camera", std::move(cam)}, {"task", std::move(task)}};
 }
 
@@ -574,6 +764,8 @@ result_document make_result_document(const solve_result<I>& result, const triang
                                      const camera_task& input, const solve_options& options) {
     result_document d = make_result_document(result, mesh, input.camera, input.task, options);
     d.camera.mount_offset = input.mount_offset;
+    d.camera.distortion = input.distortion;
+    d.camera.image_margin_px = input.image_margin_px;
     return d;
 }
 
@@ -592,6 +784,14 @@ inline ordered_json camera_record_json(const result_document::camera_record& c) 
     camera["d_max"] = finite_or_unbounded(c.d_max, "camera.d_max");
     // Written only when not zero, so the documents of a camera without one stay as they were.
     if (c.mount_offset != std::array<double, 3>{}) camera["mount_offset"] = numbers(c.mount_offset, "camera.mount_offset");
+    // Likewise the lens distortion (OpenCV order, 5 or 8 numbers) and the image margin.
+    if (c.distortion) {
+        ordered_json d = ordered_json::array();
+        const auto k = c.distortion->opencv();
+        for (std::size_t i = 0; i < c.distortion->count(); ++i) d.push_back(finite(k[i], element("camera.distortion_coefficients", i)));
+        camera["distortion_coefficients"] = std::move(d);
+    }
+    if (c.image_margin_px != 0.0) camera["image_margin_px"] = finite(c.image_margin_px, "camera.image_margin_px");
     return camera;
 }
 
@@ -606,8 +806,17 @@ inline result_document::camera_record camera_record_from_json(const json& j, con
     const json& d_max = require(camera, path, "d_max", "a number, or null for unbounded");
     c.d_max = d_max.is_null() ? std::numeric_limits<double>::infinity() : as_number(d_max, child(path, "d_max"));
     c.mount_offset = mount_offset_from_json(camera, path);
+    if (const json* v = find(camera, "distortion_coefficients"); v && !v->is_null()) {
+        const std::string where = child(path, "distortion_coefficients");
+        if (!v->is_array()) fail(where, "expected an array of 4, 5 or 8 numbers, got " + describe(*v));
+        std::vector<double> k;
+        for (std::size_t i = 0; i < v->size(); ++i) k.push_back(as_number((*v)[i], element(where, i)));
+        c.distortion = checked_by_model(path, [&] { return brown_conrady::from_opencv(k); });
+    }
+    c.image_margin_px = optional_number(camera, path, "image_margin_px").value_or(0.0);
     return c;
 }
+
 
 /// Reads the "task" object of the result documents (extra fields ignored).
 inline result_document::task_record task_record_from_json(const json& j, const std::string& path = "task") {
@@ -615,6 +824,7 @@ inline result_document::task_record task_record_from_json(const json& j, const s
     const json& task = require_object(j, path);
     t.min_view_angle = required_number(task, path, "min_view_angle");
     t.max_metres_per_pixel = optional_number(task, path, "max_metres_per_pixel");
+    t.placement = placement_from_json(task, path);
     return t;
 }
 
@@ -625,6 +835,7 @@ inline ordered_json task_record_json(const result_document::task_record& t) {
     task["max_metres_per_pixel"] = t.max_metres_per_pixel
                                        ? finite_or_unbounded(*t.max_metres_per_pixel, "task.max_metres_per_pixel")
                                        : ordered_json(nullptr);
+    put_placement(task, t.placement);
     return task;
 }
 

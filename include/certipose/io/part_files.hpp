@@ -158,7 +158,14 @@ void describe_camera(part_summary& s, const C& camera, const inspection_task& ta
     const distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
     s.camera.d_min = range.min;
     s.camera.d_max = range.max;
-    s.task = {task.min_view_angle, task.max_metres_per_pixel};
+    // The lens the field of view was certified through: a plan must not read these boxes with
+    // another (certipose-plan compares them).
+    if constexpr (requires { camera.distortion(); }) {
+        const std::optional<brown_conrady> dist(camera.distortion());
+        if (dist && !dist->is_zero()) s.camera.distortion = dist;
+    }
+    if constexpr (requires { camera.margin_px(); }) s.camera.image_margin_px = camera.margin_px();
+    s.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
 }
 
 /// summary.json as JSON (keys in the documented order).

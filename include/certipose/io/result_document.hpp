@@ -11,6 +11,7 @@
 #pragma once
 
 #include "certipose/camera/camera_model.hpp"
+#include "certipose/camera/distortion.hpp"
 #include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/interval/concept.hpp"
 #include "certipose/io/scene_record.hpp"
@@ -52,11 +53,18 @@ struct result_document {
         /// The projection centre in the mount frame (axes: the camera's optical frame; origin: the
         /// mount point), metres: the camera JSON's "mount_offset"; zero when it gives none.
         std::array<double, 3> mount_offset{};
+        /// The lens distortion the field of view was certified with ("distortion_coefficients"),
+        /// and the image margin in pixels ("image_margin_px"); absent / 0 without.
+        std::optional<brown_conrady> distortion{};
+        double image_margin_px = 0;
         friend bool operator==(const camera_record&, const camera_record&) = default;
     };
     struct task_record {
         double min_view_angle = 0;
         std::optional<double> max_metres_per_pixel{};
+        /// The part placement tolerance the boxes are certified for, its datum resolved
+        /// ("placement_tolerance"; absent: the nominal placement).
+        std::optional<placement_tolerance> placement{};
         friend bool operator==(const task_record&, const task_record&) = default;
     };
     struct settings_record {
@@ -118,7 +126,12 @@ result_document make_result_document(const solve_result<I>& result, const triang
     const certipose::distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
     d.camera.d_min = range.min;
     d.camera.d_max = range.max;
-    d.task = {task.min_view_angle, task.max_metres_per_pixel};
+    if constexpr (requires { camera.distortion(); }) {
+        const std::optional<brown_conrady> dist(camera.distortion());
+        if (dist && !dist->is_zero()) d.camera.distortion = dist;
+    }
+    if constexpr (requires { camera.margin_px(); }) d.camera.image_margin_px = camera.margin_px();
+    d.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
     // The paper's paving records carving's steps off (and its tuning at the defaults).
     const carving c = carving_steps(options.paving);
     d.settings = {options.position_eps, options.orientation_eps, c.inner_contraction, c.occlusion_cuts,

@@ -118,9 +118,11 @@ public:
         outer_ = upper(atan(I(tan_outer)));
     }
 
-    /// From any camera model (its K, width and height).
+    /// From any camera model: its certified image (certified_image: K, width and height for a
+    /// camera without distortion, the proven pinhole-equivalent image for one with).
     template <CameraModel C>
-    explicit fov_frustum(const C& camera) : fov_frustum(camera.intrinsics(), camera.width_px(), camera.height_px()) {}
+    explicit fov_frustum(const C& camera) : fov_frustum(certified_image(camera)) {}
+    explicit fov_frustum(const pinhole_image& image) : fov_frustum(image.K, image.width_px, image.height_px) {}
 
     const std::array<side, 4>& sides() const noexcept { return sides_; }
     /// The midpoints of the sides' ℓ_k (plain doubles, for fov_refuted).
@@ -137,8 +139,8 @@ private:
     double inner_ = 0.0, outer_ = 0.0;
 };
 
-/// The frustum of `camera`, built once per thread for each camera in a row (compared by K and
-/// the image size). An orientation search asks for it on every position box, and building it
+/// The frustum of `camera`, built once per thread for each camera in a row (compared by the K
+/// and image size of its certified image, camera_model.hpp's certified_image). An orientation search asks for it on every position box, and building it
 /// (interval atan, sqrt and divisions) each time would cost more than most searches. A K or size with a NaN never
 /// compares equal, so such a camera is rebuilt, and throws, every time.
 template <Interval I, CameraModel C>
@@ -149,8 +151,9 @@ const fov_frustum<I>& frustum_of(const C& camera) {
         fov_frustum<I> frustum;
     };
     thread_local std::optional<entry> last;
-    const Eigen::Matrix3d K = camera.intrinsics();
-    const double width = camera.width_px(), height = camera.height_px();
+    const pinhole_image image = certified_image(camera);
+    const Eigen::Matrix3d& K = image.K;
+    const double width = image.width_px, height = image.height_px;
     if (!last || !(last->K == K) || !(last->width == width) || !(last->height == height)) {
         fov_frustum<I> built(K, width, height);  // throws before `last` changes
         last.emplace(entry{K, width, height, std::move(built)});

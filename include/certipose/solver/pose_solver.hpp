@@ -17,7 +17,10 @@
 //      BOUNDARY boxes below ε_p when solve_options::refine asks;
 //   2. orientation stage (lines 28–36, solver/orientation_schedule.hpp): merge touching position
 //      boxes, orient groups, then orient each box, bisecting one no orientation fits;
-//   3. growth (past the paper, solver/detail/growth.hpp), when solve_options::grow asks.
+//   3. placement (past the paper, solver/placement_stage.hpp), when the task has a placement
+//      tolerance: the VALID boxes re-proven for every admitted placement of the part, split
+//      where they are not;
+//   4. growth (past the paper, solver/detail/growth.hpp), when solve_options::grow asks.
 // BOUNDARY 6D boxes carry the whole orientation range (nothing was decided about aiming there)
 // and the reason they were left undecided (`classified_box::reason`).
 //
@@ -60,6 +63,7 @@
 #include "certipose/solver/detail/growth.hpp"
 #include "certipose/solver/orientation_schedule.hpp"
 #include "certipose/solver/paving.hpp"
+#include "certipose/solver/placement_stage.hpp"
 #include "certipose/solver/policies.hpp"
 #include "certipose/solver/position_stage.hpp"
 #include "certipose/solver/result.hpp"
@@ -133,7 +137,9 @@ public:
     /// Everything besides the part, the camera and the task, all optional.
     struct setup {
         /// External occluders (closed solids) added to the part's own occlusion; read while the
-        /// solver is built, not kept. Ignored when `occlusion` is given.
+        /// solver is built, not kept. Ignored by the occlusion when `occlusion` is given; with a
+        /// placement tolerance in the task they are also the occluders that do not move with the
+        /// part (occlusion/fixed_occluders.hpp), so pass them then too.
         std::span<const triangle_mesh> occluders{};
         /// A ready occlusion policy (e.g. one shared by several solvers); built from the part
         /// and `occluders` when absent.
@@ -146,6 +152,9 @@ public:
         contraction_type contraction{};
         /// Tuning of the orientation schedule's steps for carving (solver/orientation_schedule.hpp).
         schedule_options schedule{};
+        /// Options of the placement stage (solver/placement_stage.hpp; used with a placement
+        /// tolerance in the task).
+        placement_stage_options placement{};
     };
 
     /// Builds the occlusion policy for the scene (the part plus optional external occluders)
@@ -158,9 +167,13 @@ public:
           orientation_(std::move(s.orientation)),
           constraint_parameters_(std::move(s.constraints)),
           contraction_(std::move(s.contraction)),
-          schedule_(s.schedule) {
+          schedule_(s.schedule),
+          placement_options_(s.placement) {
         task_.validate();
         schedule_.validate();
+        placement_options_.validate();
+        if (task_.placement && !task_.placement->none())
+            placement_ = placement_scene{resolve(*task_.placement, surface_centroid(part)), fixed_occluders::of(s.occluders)};
         range_ = capped_distance_range(camera_, task_.max_metres_per_pixel);
         if (range_.empty())
             throw invalid_argument("max_metres_per_pixel",
@@ -188,6 +201,16 @@ public:
     const constraint_parameters& constraints() const noexcept { return constraint_parameters_; }
     const contraction_type& contraction() const noexcept { return contraction_; }
     const schedule_options& schedule() const noexcept { return schedule_; }
+    /// The task's placement tolerance with its datum resolved (the part's centroid when the task
+    /// gives none); nothing when the task has none.
+    std::optional<resolved_placement> placement() const {
+        if (!placement_) return std::nullopt;
+        return placement_->tolerance;
+    }
+
+    /// What the proofs of every admitted placement need (box_certifier, facet_inspector), or null.
+    const placement_scene* placement_proofs() const noexcept { return placement_ ? &*placement_ : nullptr; }
+
 
     /// The position stage the pipeline runs for a facet (solver/position_stage.hpp), as `solve`
     /// builds it: its `contractor()` is the contraction policy's contractor on the facet's
@@ -247,6 +270,8 @@ private:
                                position_stage_result<I>& positions, result_type& out) const;
     void run_growth(std::size_t facet_index, const solve_options& options, const detail::run_clock& clock,
                     result_type& out) const;
+    void run_placement_stage(std::size_t facet_index, const solve_options& options, const detail::run_clock& clock,
+                             result_type& out) const;
 
     const triangle_mesh* part_;
     camera_type camera_;
@@ -256,6 +281,8 @@ private:
     constraint_parameters constraint_parameters_;
     contraction_type contraction_;
     schedule_options schedule_;
+    placement_stage_options placement_options_;
+    std::optional<placement_scene> placement_{};
     distance_range range_{};
 };
 
@@ -276,6 +303,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
 
     position_stage_result<I> positions = run_position_stage(facet_index, options, clock, out);  // lines 1–27
     run_orientation_stage(f, options, clock, positions, out);                                   // lines 28–36
+    if (placement_ && out.stats.valid > 0) run_placement_stage(facet_index, options, clock, out);  // past the paper
     if (options.grow && out.stats.valid > 0) run_growth(facet_index, options, clock, out);      // past the paper
     out.stats.seconds = clock.seconds();
     return out;
@@ -380,10 +408,28 @@ void pose_solver<Policies>::run_growth(std::size_t facet_index, const solve_opti
 }
 
 template <class Policies>
+void pose_solver<Policies>::run_placement_stage(std::size_t facet_index, const solve_options& options,
+                                                const detail::run_clock& clock, result_type& out) const {
+    auto ok = certifier(facet_index);
+    // The margin of the erode-and-restore step: the reach of the box's camera positions, at
+    // least the facet's own (solver/placement_stage.hpp).
+    const std::array<double, 3> facet_margin = facet_reach<I>(part_->facet(facet_index).v, placement_->tolerance);
+    const auto margin = [&](const position_box<I>& p) {
+        std::array<double, 3> m = camera_reach_radii(p, placement_->tolerance);
+        for (std::size_t k = 0; k < 3; ++k) m[k] = std::max(m[k], facet_margin[k]);
+        return m;
+    };
+    certify_for_every_placement(
+        out, [&](const pose_box<I>& b) { return ok(b); }, margin, options.position_eps, options.orientation_eps,
+        placement_options_, [&] { return clock.out_of_time(); });
+    out.stats.orientation_certifications += ok.certifications;
+}
+
+template <class Policies>
 auto pose_solver<Policies>::certifier(std::size_t facet_index) const -> certifier_type {
     const facet& f = part_->facet(facet_index);  // throws out_of_range("facet", ...)
     return certifier_type(make_constraint_set<constraint_set_type>(position_problem{f, range_, task_}, constraint_parameters_),
-                          occlusion_, facet_index, f, fov_frustum<I>(camera_));
+                          occlusion_, facet_index, f, fov_frustum<I>(camera_), placement_ ? &*placement_ : nullptr);
 }
 
 template <class Policies>

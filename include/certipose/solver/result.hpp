@@ -68,6 +68,9 @@ struct solve_stats {
     /// Camera regions (solver/camera_regions.hpp, applied after the solve): VALID 6D boxes or
     /// pieces dropped as wholly outside the allowed space, and bisections made deciding pieces.
     std::size_t region_dropped = 0, region_bisections = 0;
+    /// Placement tolerance (solver/placement_stage.hpp): VALID boxes that needed splitting to be
+    /// proven for every placement, and the bisections made doing so.
+    std::size_t placement_split = 0, placement_bisections = 0;
     double seconds_position = 0, seconds_orientation = 0, seconds = 0;
     termination reason = termination::completed;
 };
@@ -114,6 +117,8 @@ inline constexpr auto solve_stats_fields = std::make_tuple(
     stats_field{"orientation_borrowed", &solve_stats::orientation_borrowed},
     stats_field{"region_dropped", &solve_stats::region_dropped},
     stats_field{"region_bisections", &solve_stats::region_bisections},
+    stats_field{"placement_split", &solve_stats::placement_split},
+    stats_field{"placement_bisections", &solve_stats::placement_bisections},
     stats_field{"seconds_position", &solve_stats::seconds_position},
     stats_field{"seconds_orientation", &solve_stats::seconds_orientation},
     stats_field{"termination", &solve_stats::reason},

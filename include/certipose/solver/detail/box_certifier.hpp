@@ -16,9 +16,22 @@
 
 #include "certipose/constraints/concept.hpp"
 #include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/fixed_occluders.hpp"
 #include "certipose/orientation/certify.hpp"
+#include "certipose/pose/placement_tolerance.hpp"
 #include "certipose/pose/pose_box.hpp"
 #include "certipose/solver/detail/carving.hpp"
+
+namespace certipose {
+
+/// What the solver's proofs need of a placement tolerance (pose/placement_tolerance.hpp): the
+/// tolerance with its datum, and the occluders that do not move with the part.
+struct placement_scene {
+    resolved_placement tolerance;
+    fixed_occluders fixed;
+};
+
+}  // namespace certipose
 
 namespace certipose::detail {
 
@@ -65,11 +78,19 @@ bool prove_visible(const Occlusion& occlusion, const position_box<I>& p, std::si
     return false;
 }
 
+/// With a placement tolerance (`placement` not null), every proof is made for every placement
+/// it admits: constraints 1–4 and the part's occlusion over camera_reach([p]) (the camera
+/// positions in the part frame), the field of view over [p] grown by the facet's reach, and the
+/// fixed occluders by sight_region_clear (pose/placement_tolerance.hpp explains why).
 template <class Set, class Occlusion, Interval I>
 class box_certifier {
 public:
-    box_certifier(Set set, const Occlusion& occlusion, std::size_t facet_index, const facet& f, fov_frustum<I> frustum)
-        : set_(std::move(set)), occlusion_(&occlusion), facet_index_(facet_index), facet_(f), frustum_(std::move(frustum)) {}
+    box_certifier(Set set, const Occlusion& occlusion, std::size_t facet_index, const facet& f, fov_frustum<I> frustum,
+                  const placement_scene* placement = nullptr)
+        : set_(std::move(set)), occlusion_(&occlusion), facet_index_(facet_index), facet_(f), frustum_(std::move(frustum)),
+          placement_(placement) {
+        if (placement_) facet_reach_ = facet_reach<I>(f.v, placement_->tolerance);
+    }
 
     /// Constraints 1–4 and 6 over the whole position box.
     bool position(const position_box<I>& p) {
@@ -85,20 +106,20 @@ public:
         if (is_empty(b)) return false;
         const position_box<I>& p = b.position;
         if (last_ && *last_ == p) return last_ok_ && fov(p, b.orientation);
-        if (prove_position_set(set_, p) != verdict::satisfied) {
+        if (prove_position_set(set_, in_part_frame(p)) != verdict::satisfied) {
             remember(p, false);
             return false;
         }
         if (!fov(p, b.orientation)) return false;  // occlusion over p not known yet: nothing kept
-        remember(p, prove_visible(*occlusion_, p, facet_index_, cache_));
+        remember(p, prove_sight(p));
         return last_ok_;
     }
 
     /// Constraint 5 over position × orientation.
     bool fov(const position_box<I>& p, const orientation_box<I>& o) {
         ++certifications;
-        if (!(last_ && *last_ == p)) return certify_fov(p, o, facet_, frustum_) == verdict::satisfied;
-        if (!prepared_) prepared_.emplace(p, facet_);
+        if (!(last_ && *last_ == p)) return certify_fov(fov_box(p), o, facet_, frustum_) == verdict::satisfied;
+        if (!prepared_) prepared_.emplace(fov_box(p), facet_);
         return certify_fov(*prepared_, o, frustum_) == verdict::satisfied;
     }
 
@@ -110,8 +131,18 @@ private:
         last_ok_ = ok;
         prepared_.reset();
     }
+    // The camera positions the proofs of constraints 1–4 and 6 must cover.
+    position_box<I> in_part_frame(const position_box<I>& p) const {
+        return placement_ ? camera_reach(p, placement_->tolerance) : p;
+    }
+    // The positions the field-of-view proof must cover (the facet's motion moved onto the camera).
+    position_box<I> fov_box(const position_box<I>& p) const { return placement_ ? grown(p, facet_reach_) : p; }
+    bool prove_sight(const position_box<I>& p) {
+        if (!prove_visible(*occlusion_, in_part_frame(p), facet_index_, cache_)) return false;
+        return !placement_ || sight_region_clear(p, facet_.v, facet_.normal, facet_reach_, placement_->fixed);
+    }
     bool prove_position(const position_box<I>& p) {
-        return prove_position_set(set_, p) == verdict::satisfied && prove_visible(*occlusion_, p, facet_index_, cache_);
+        return prove_position_set(set_, in_part_frame(p)) == verdict::satisfied && prove_sight(p);
     }
 
     Set set_;
@@ -119,6 +150,8 @@ private:
     std::size_t facet_index_;
     facet facet_;
     fov_frustum<I> frustum_;
+    const placement_scene* placement_ = nullptr;
+    std::array<double, 3> facet_reach_{};
     std::optional<position_box<I>> last_{};
     bool last_ok_ = false;
     std::optional<fov_position<I>> prepared_{};
