@@ -254,3 +254,11 @@ TEST_CASE("calibration: camera JSON distortion, margin and max_blur_px") {
     CHECK(field(replaced(base, "\"max_blur_circle\": 6.9e-6,", "")) == "camera.max_blur_circle");
     CHECK(field(replaced(base, "\"width_px\"", "\"calibration\": \"none.yaml\", \"width_px\"")) == "camera.width_px");
 }
+
+TEST_CASE("calibration: an OpenCV JSON nested a hundred thousand levels deep is refused, not a stack overflow") {
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const std::string text = R"({"camera_matrix": {"type_id": "opencv-matrix", "rows": 3, "cols": 3, "dt": "d", "data": )" +
+                             deep + "}}";
+    CHECK_THROWS_WITH_AS(certipose::parse_calibration(text, "deep.json"), doctest::Contains("nested deeper than 32 levels"),
+                         certipose::io_error);
+}

@@ -279,3 +279,12 @@ TEST_CASE("placement with a distorted lens, refined and grown: every mode combin
     }
     CHECK(checked > 0);
 }
+
+TEST_CASE("placement: a ready occlusion policy is refused, its fixed occluders being unknown") {
+    inspection_task task{.min_view_angle = 0.35};
+    task.placement = issue_tolerance();
+    case_solver::setup s;
+    s.occlusion.emplace(part().mesh, std::span<const triangle_mesh>{});
+    CHECK_THROWS_WITH_AS(case_solver(part().mesh, calibrated(thin_lens_camera(design_camera_parameters())), task, std::move(s)),
+                         doctest::Contains("not a ready occlusion policy"), certipose::invalid_argument);
+}

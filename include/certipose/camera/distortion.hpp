@@ -108,8 +108,9 @@ struct radial_terms {
 };
 template <class T>
 radial_terms<T> radial(const brown_conrady& d, const T& t) {
-    return {((d.k3 * t + d.k2) * t + d.k1) * t + 1.0, (3 * d.k3 * t + 2 * d.k2) * t + d.k1,
-            ((d.k6 * t + d.k5) * t + d.k4) * t + 1.0, (3 * d.k6 * t + 2 * d.k5) * t + d.k4};
+    // 3·k is not exact in doubles: multiply after the interval product (2·k is exact).
+    return {((d.k3 * t + d.k2) * t + d.k1) * t + 1.0, (3.0 * (d.k3 * t) + 2 * d.k2) * t + d.k1,
+            ((d.k6 * t + d.k5) * t + d.k4) * t + 1.0, (3.0 * (d.k6 * t) + 2 * d.k5) * t + d.k4};
 }
 
 /// The sign of d(r·radial(r))/dr at t = r² is that of N·D + 2t(N'·D − N·D') (D > 0 given).
@@ -122,9 +123,9 @@ T fold_margin(const radial_terms<T>& r, const T& t) {
 template <class T>
 T jacobian(const brown_conrady& d, const T& x, const T& y, const T& x2, const T& y2, const T& xy,
            const T& R, const T& dR) {
-    const T a = R + 2.0 * x2 * dR + (2 * d.p1) * y + (6 * d.p2) * x;
+    const T a = R + 2.0 * x2 * dR + (2 * d.p1) * y + 6.0 * (d.p2 * x);  // 6·p is not exact in doubles
     const T b = 2.0 * xy * dR + (2 * d.p1) * x + (2 * d.p2) * y;
-    const T c = R + 2.0 * y2 * dR + (6 * d.p1) * y + (2 * d.p2) * x;
+    const T c = R + 2.0 * y2 * dR + 6.0 * (d.p1 * y) + (2 * d.p2) * x;
     return a * c - b * b;
 }
 

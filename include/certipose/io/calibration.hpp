@@ -93,15 +93,18 @@ inline std::string child(const std::string& path, std::string_view key) { return
 inline std::string element(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
 /// YAML node from nlohmann JSON: numbers as their round-trip text, so one validation serves both.
-inline YAML::Node to_yaml(const nlohmann::json& j) {
+/// A calibration is a few levels deep; deeper nesting is refused before the recursion could
+/// exhaust the stack (nlohmann parses any depth without recursing).
+inline YAML::Node to_yaml(const nlohmann::json& j, const std::string& source, const std::string& prefix, int depth = 0) {
+    if (depth > 32) throw io_error(source, prefix + "nested deeper than 32 levels: not a calibration file");
     if (j.is_object()) {
         YAML::Node n(YAML::NodeType::Map);
-        for (auto it = j.begin(); it != j.end(); ++it) n[it.key()] = to_yaml(it.value());
+        for (auto it = j.begin(); it != j.end(); ++it) n[it.key()] = to_yaml(it.value(), source, prefix, depth + 1);
         return n;
     }
     if (j.is_array()) {
         YAML::Node n(YAML::NodeType::Sequence);
-        for (const auto& e : j) n.push_back(to_yaml(e));
+        for (const auto& e : j) n.push_back(to_yaml(e, source, prefix, depth + 1));
         return n;
     }
     if (j.is_null()) return YAML::Node(YAML::NodeType::Null);
@@ -311,7 +314,7 @@ inline calibration parse_calibration(std::string_view text, const std::string& s
                 what.erase(0, close + 2);
             throw io_error(source, prefix + "invalid JSON: " + what);
         }
-        root = to_yaml(j);
+        root = to_yaml(j, source, prefix);
     } else {
         try {
             root = YAML::Load(without_opencv_directive(text));
@@ -336,7 +339,8 @@ inline calibration read_calibration(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw io_error(name, "read_calibration: cannot open " + name);
     // A calibration is a few hundred bytes. Reading at most 1 MiB keeps a wrong path (a log, a
-    // device such as /dev/zero named in a camera JSON) from filling memory or never ending.
+    // device such as /dev/zero named in a camera JSON) from filling memory or reading forever
+    // (a FIFO with no writer still blocks, as for any reader).
     constexpr std::size_t limit = std::size_t{1} << 20;
     std::string text(limit + 1, '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));

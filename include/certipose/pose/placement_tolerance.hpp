@@ -134,7 +134,7 @@ inline resolved_placement resolve(const placement_tolerance& t, const Eigen::Vec
 /// rounded up.
 inline std::array<double, 3> reach_at(const resolved_placement& t, double radius) {
     using detail::placement::up;
-    const double turn = up(t.rotation * radius);
+    const double turn = t.rotation == 0.0 ? 0.0 : up(t.rotation * radius);  // no 0·∞ = NaN
     return {up(t.translation[0] + turn), up(t.translation[1] + turn), up(t.translation[2] + turn)};
 }
 

@@ -6,9 +6,9 @@
 // (solver/detail/box_certifier.hpp with a placement_scene). For each box B:
 //   1. B itself: accepted → VALID as it is;
 //   2. erode and restore: the core of B, its position faces moved in by the margin m(B) (the
-//      reach of its camera positions, at least the facet's), is certified for every placement by
-//      inclusion — the proofs over B covered every position the core can reach in the part
-//      frame — unless a fixed occluder is in the way, so it is tried next; then each position
+//      reach of its camera positions, at least the facet's), should pass by inclusion — the
+//      proofs over B covered every position the core can reach in the part frame — unless a
+//      fixed occluder is in the way; it is certified like any box, then; then each position
 //      face is moved back out to where B had it, one at a time, kept there when the certifier
 //      still accepts the box. Only the faces where B touched the edge of what holds for every
 //      placement stay eroded; the slabs they cut off (disjoint, with the box a partition of B)
@@ -19,8 +19,8 @@
 //      way, down to ε_p / position_split and ε_o / orientation_split or `max_certifications` per
 //      box; what is still unproven then is BOUNDARY `placement` (its intervals are certified for
 //      the nominal placement only) — the whole box, once, when no piece of it was proven.
-// Any sub-box of a box is covered by the proofs of the box, so the stage only removes poses: it
-// cannot make a box VALID that the nominal solve did not. Growth (solve_options::grow) runs after
+// Every piece returned VALID has passed the certifier, and every piece is a sub-box of a nominal
+// VALID box: the stage only removes poses. Growth (solve_options::grow) runs after
 // it with the same certifier, so grown boxes hold for every placement too.
 #pragma once
 
@@ -118,10 +118,12 @@ std::optional<std::pair<pose_box<I>, std::vector<pose_box<I>>>> erode_and_restor
 /// The placement stage over `result`'s VALID boxes (see the header comment). `certified(box)`
 /// proves a 6D box for every placement; `margin(position)` is the per-axis margin of step 2;
 /// `out_of_time()` ends the stage early, leaving the boxes not yet decided BOUNDARY (reason
-/// `budget`). Updates counts, volumes and reasons of result.stats.
-template <Interval I, class Certify, class Margin, class OutOfTime>
+/// `budget`), and `stop_reason()` then says why (deadline or cancelled) in stats.reason. Updates
+/// counts, volumes and reasons of result.stats.
+template <Interval I, class Certify, class Margin, class OutOfTime, class StopReason>
 void certify_for_every_placement(solve_result<I>& result, Certify&& certified, Margin&& margin, double position_eps,
-                                 double orientation_eps, const placement_stage_options& options, OutOfTime&& out_of_time) {
+                                 double orientation_eps, const placement_stage_options& options, OutOfTime&& out_of_time,
+                                 StopReason&& stop_reason) {
     options.validate();
     solve_stats& st = result.stats;
     const std::array<double, 6> finest{position_eps / options.position_split, position_eps / options.position_split,
@@ -141,7 +143,11 @@ void certify_for_every_placement(solve_result<I>& result, Certify&& certified, M
             boxes.push_back(std::move(b));
             continue;
         }
-        stopped = stopped || out_of_time();
+        if (!stopped && out_of_time()) {
+            stopped = true;
+            // Say why, as the other stages do (a run that was complete until now ends here).
+            if (st.reason == termination::completed) st.reason = stop_reason();
+        }
         if (stopped) {  // not decided: the run's budget, as for the other stages
             boundary(b.box, boundary_reason::budget);
             continue;

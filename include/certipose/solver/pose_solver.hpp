@@ -142,7 +142,7 @@ public:
         /// part (occlusion/fixed_occluders.hpp), so pass them then too.
         std::span<const triangle_mesh> occluders{};
         /// A ready occlusion policy (e.g. one shared by several solvers); built from the part
-        /// and `occluders` when absent.
+        /// and `occluders` when absent. Refused with a placement tolerance in the task.
         std::optional<occlusion_type> occlusion{};
         /// The orientation policy (with its options).
         orientation_type orientation{};
@@ -172,8 +172,16 @@ public:
         task_.validate();
         schedule_.validate();
         placement_options_.validate();
-        if (task_.placement && !task_.placement->none())
+        if (task_.placement && !task_.placement->none()) {
+            // The fixed occluders are the scene's extra meshes, known only from `occluders`: a
+            // ready policy may hold some the solver cannot see, which would then be proven in
+            // the part frame only, as if they moved with the part.
+            if (s.occlusion)
+                throw invalid_argument("occlusion", "pose_solver: a placement tolerance needs the occluders themselves "
+                                                    "(setup.occluders), not a ready occlusion policy: they stay put while "
+                                                    "the part moves");
             placement_ = placement_scene{resolve(*task_.placement, surface_centroid(part)), fixed_occluders::of(s.occluders)};
+        }
         range_ = capped_distance_range(camera_, task_.max_metres_per_pixel);
         if (range_.empty())
             throw invalid_argument("max_metres_per_pixel",
@@ -421,7 +429,8 @@ void pose_solver<Policies>::run_placement_stage(std::size_t facet_index, const s
     };
     certify_for_every_placement(
         out, [&](const pose_box<I>& b) { return ok(b); }, margin, options.position_eps, options.orientation_eps,
-        placement_options_, [&] { return clock.out_of_time(); });
+        placement_options_, [&] { return clock.out_of_time(); },
+        [&] { return options.stop.stop_requested() ? termination::cancelled : termination::deadline; });
     out.stats.orientation_certifications += ok.certifications;
 }
 
