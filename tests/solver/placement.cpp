@@ -199,7 +199,7 @@ TEST_CASE("placement with a fixed occluder: the fixture plate stays while the pa
     for (std::size_t facet : facets) {
         const auto r = solver.solve(facet, {.position_eps = 0.1, .orientation_eps = 0.38});
         const auto rep = check_placed(r, part().mesh, solver.camera(), solver.range(), task.min_view_angle, *solver.placement(),
-                                      fixed, 1, 2, seed++, 100);
+                                      fixed, 1, 2, seed++, 60);
         MESSAGE("facet " << facet << ": " << r.stats.valid << " VALID, " << rep.samples << " poses, " << rep.violations
                          << " violations");
         CHECK(rep.violations == 0);
@@ -211,7 +211,7 @@ TEST_CASE("placement with a fixed occluder: the fixture plate stays while the pa
 TEST_CASE("placement: a plan's tolerance boxes and every facet they certify, for every placement") {
     // As certipose-plan builds its candidates (tests/solver/soundness.cpp has the nominal twin):
     // VALID boxes of a run with the tolerance, cut to ±5 mm / ±0.02 rad about their centres (the
-    // 6 largest, 3 on featuretype); each
+    // 4 largest, 2 on featuretype: each claim costs a moved copy of the part per pose); each
     // certifies its own facet and whatever inspect_boxes certifies besides, all under the
     // tolerance. Every such claim is sampled against the moved part. The case study and
     // featuretype (heavy self-occlusion).
@@ -243,16 +243,16 @@ TEST_CASE("placement: a plan's tolerance boxes and every facet they certify, for
         }
     };
     one(part().mesh, calibrated(thin_lens_camera(design_camera_parameters())), inspection_task{.min_view_angle = 0.35},
-        part().facet_of_interest, 6, 500);
+        part().facet_of_interest, 4, 500);
     {
         const placed_case c = reference_cases[1];
         const auto in = read_camera_task(shared_path("../cases/" + std::string(c.camera)));
         const triangle_mesh mesh = read_mesh(shared_path(c.mesh), {.scale = c.scale});
-        one(mesh, in.calibrated(), in.task, c.facet, 3, 900);
+        one(mesh, in.calibrated(), in.task, c.facet, 2, 900);
     }
     MESSAGE(claims << " (box, facet) claims of a plan's boxes sampled under motions: " << samples << " poses, " << violations
                    << " violations");
-    CHECK(claims > 12);
+    CHECK(claims > 8);
     CHECK(violations == 0);
 }
 
