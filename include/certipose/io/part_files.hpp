@@ -150,21 +150,7 @@ inline std::optional<facet_termination> facet_termination_from_string(std::strin
 /// The camera and task records of a document, from the camera the run used.
 template <CameraModel C>
 void describe_camera(part_summary& s, const C& camera, const inspection_task& task) {
-    s.camera.width_px = camera.width_px();
-    s.camera.height_px = camera.height_px();
-    const Eigen::Matrix3d k = camera.intrinsics();
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) s.camera.K[r][c] = k(r, c);
-    const distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
-    s.camera.d_min = range.min;
-    s.camera.d_max = range.max;
-    // The lens the field of view was certified through: a plan must not read these boxes with
-    // another (certipose-plan compares them).
-    if constexpr (requires { camera.distortion(); }) {
-        const std::optional<brown_conrady> dist(camera.distortion());
-        if (dist && !dist->is_zero()) s.camera.distortion = dist;
-    }
-    if constexpr (requires { camera.margin_px(); }) s.camera.image_margin_px = camera.margin_px();
+    s.camera = describe_camera_record(camera, task);
     s.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
 }
 

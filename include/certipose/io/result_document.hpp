@@ -104,6 +104,28 @@ box_record to_record(const classified_box<I>& b) {
             b.cls == box_class::boundary ? std::optional<boundary_reason>(b.reason) : std::nullopt};
 }
 
+/// The camera record of a document (result JSON, summary.json, PLAN.json) from the camera a run
+/// used: size, K, the certified distances for `task`, and the lens it was certified through (a
+/// plan must not read boxes certified through another). The mount offset is the caller's.
+template <CameraModel C>
+result_document::camera_record describe_camera_record(const C& camera, const inspection_task& task) {
+    result_document::camera_record rec;
+    rec.width_px = camera.width_px();
+    rec.height_px = camera.height_px();
+    const Eigen::Matrix3d k = camera.intrinsics();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) rec.K[r][c] = k(r, c);
+    const certipose::distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
+    rec.d_min = range.min;
+    rec.d_max = range.max;
+    if constexpr (requires { camera.distortion(); }) {
+        const std::optional<brown_conrady> dist(camera.distortion());
+        if (dist && !dist->is_zero()) rec.distortion = dist;
+    }
+    if constexpr (requires { camera.margin_px(); }) rec.image_margin_px = camera.margin_px();
+    return rec;
+}
+
 /// The document of one solver run. `mesh` must be the mesh that was solved (the facet is
 /// mesh.facet(result.facet_index); throws certipose::out_of_range if that index is not in it),
 /// `camera`, `task` and `options` the ones passed to the solver.
@@ -118,19 +140,7 @@ result_document make_result_document(const solve_result<I>& result, const triang
         for (int k = 0; k < 3; ++k) d.facet.vertices[i][k] = f.v[i][k];
         d.facet.normal[i] = f.normal[i];
     }
-    d.camera.width_px = camera.width_px();
-    d.camera.height_px = camera.height_px();
-    const Eigen::Matrix3d k = camera.intrinsics();
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) d.camera.K[r][c] = k(r, c);
-    const certipose::distance_range range = capped_distance_range(camera, task.max_metres_per_pixel);
-    d.camera.d_min = range.min;
-    d.camera.d_max = range.max;
-    if constexpr (requires { camera.distortion(); }) {
-        const std::optional<brown_conrady> dist(camera.distortion());
-        if (dist && !dist->is_zero()) d.camera.distortion = dist;
-    }
-    if constexpr (requires { camera.margin_px(); }) d.camera.image_margin_px = camera.margin_px();
+    d.camera = describe_camera_record(camera, task);
     d.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
     // The paper's paving records carving's steps off (and its tuning at the defaults).
     const carving c = carving_steps(options.paving);
