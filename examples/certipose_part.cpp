@@ -6,7 +6,9 @@
 //                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
 //                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N]
 //                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
-//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
+//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
+//                  [--working-distance DMIN,DMAX --min-view-angle RAD] [--mesh-semantics auto|solid|soup]
+//                  [--keep-largest K] [--box-store jsonl|binary|both] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
 // restricted to the --keep-in / --keep-out camera regions before they are written
@@ -16,18 +18,22 @@
 // are balanced over the ranks (part/mpi.hpp), each rank uses --threads threads, and rank 0 writes
 // the one folder, identical to a single-process run's.
 //
-// Writes DIR/summary.json and DIR/boxes.jsonl (VALID boxes; BOUNDARY ones too with --boundary),
-// both committed together at the end (io/output_files.hpp): a run that fails leaves DIR as it
-// was. SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
+// Writes DIR/summary.json and the boxes (VALID; BOUNDARY ones too with --boundary) as
+// DIR/boxes.jsonl and DIR/boxes.cpbx (the binary store, io/box_store.hpp; --box-store picks
+// one or both), all committed together at the end (io/output_files.hpp): a run that fails
+// leaves DIR as it was. A mesh that is not a clean closed solid is read as a triangle soup
+// (--mesh-semantics auto), with a warning naming what was found (docs/occlusion.md). SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
 // the summary marked "interrupted", and the exit code is 130/143. Every error is one line
 // "certipose-part: ..." on stderr: exit 1 for bad input files, solver or write errors, 2 for a
-// bad command line. A progress line (facets, rate, ETA) goes to stderr when it is a terminal.
+// bad command line. A progress line (facets, rate, ETA, memory) goes to stderr when it is a
+// terminal.
 #include "program_support.hpp"
 #include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/io/output_files.hpp>
+#include <certipose/io/box_store.hpp>
 #include <certipose/io/part_files.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
@@ -64,6 +70,8 @@ struct arguments {
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
     std::optional<double> facet_time_limit, time_limit, corner_rest;
+    std::optional<std::size_t> keep_largest;
+    bool write_jsonl = true, write_binary = true;  ///< --box-store
     scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
@@ -73,7 +81,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "DIR/summary.json and DIR/boxes.jsonl (docs/part.md).",
                  "certipose-part"};
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
-        facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb";
+        facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb", keep_largest,
+        box_store = "both";
     bool boundary = false, quiet = false, paper_paving = false, grow = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
@@ -98,6 +107,11 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "(eps/10; default 3, 2 certifies more, slower)")->type_name("PIECES");
     app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
+    app.add_option("--keep-largest", keep_largest, "keep only the K largest VALID boxes of each facet (6D volume)")->type_name("K");
+    app.add_option("--box-store", box_store,
+                   "which box files to write: jsonl (boxes.jsonl), binary (boxes.cpbx, docs/part.md) or both (default)")
+        ->type_name("FORMAT")
+        ->check(CLI::IsMember({"jsonl", "binary", "both"}));
     scene_options_text scene;
     add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
@@ -123,6 +137,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!corner_depth.empty()) a.corner_depth = parse_corner_depth(corner_depth);
         if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
+        if (!keep_largest.empty()) a.keep_largest = parse_count("--keep-largest", keep_largest, 1);
+        a.write_jsonl = box_store != "binary";
+        a.write_binary = box_store != "jsonl";
         a.scene = parse_scene_options(scene, a.camera);
         if (!time_limit.empty()) a.time_limit = parse_double("--time-limit", time_limit, "a positive finite number of seconds");
         std::error_code ec;
@@ -148,6 +165,36 @@ using part_solver_for = certipose::part_solver<std::conditional_t<
     std::is_same_v<Occlusion, certipose::aabb_occlusion>, certipose::with_camera<certipose::calibrated_camera>,
     certipose::with_occlusion<Occlusion, certipose::with_camera<certipose::calibrated_camera>>>>;
 
+/// summary.json's record of everything else that changes the answer, and of the survey when
+/// the occlusion read the scene as a triangle soup.
+template <class Occlusion>
+void describe_run_settings(certipose::part_summary& s, const arguments& args, const certipose::solve_options& facet,
+                           const Occlusion& occlusion) {
+    auto& st = s.settings;
+    st.paving = args.paper_paving ? "paper" : "default";
+    const certipose::carving c = certipose::carving_steps(facet.paving);
+    st.inner_contraction = c.inner_contraction;
+    st.occlusion_cuts = c.occlusion_cuts;
+    st.leaf_corner_boxes = c.corner_boxes;
+    st.corner_depth = c.corner_depth;
+    st.corner_rest_min_pieces = c.rest_min_pieces;
+    st.refine_seconds = args.refine;
+    st.grow = args.grow;
+    st.max_boxes = args.max_boxes;
+    st.facets = args.facets;
+    st.keep_largest = args.keep_largest;
+    st.box_store = args.write_jsonl && args.write_binary ? "both" : args.write_binary ? "binary" : "jsonl";
+    st.mesh_semantics = certipose::checks_occlusion<Occlusion> ? "solid" : "none";  // the boolean test reads solids
+    if constexpr (requires { occlusion.survey(); }) {
+        st.mesh_semantics = std::string(certipose::to_string(occlusion.semantics()));
+        if (const certipose::mesh_survey* v = occlusion.survey())
+            s.survey = certipose::part_summary::survey_record{v->bodies,           v->closed_bodies,     v->inward_bodies,
+                                                              v->open_edges,       v->nonmanifold_edges, v->duplicate_faces,
+                                                              v->intersecting_pairs, v->buried,          v->covered,
+                                                              v->examples};
+    }
+}
+
 /// This process's place in an MPI run (rank 0 of 1 without MPI).
 struct process {
     int rank = 0, ranks = 1;
@@ -165,11 +212,12 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     using I = certipose::boost_interval;
     stage_line stage("certipose-part", args.quiet || proc.rank != 0);
     if constexpr (!std::is_same_v<Occlusion, certipose::no_occlusion>)
-        stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
+        stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces");
     const auto part = naming_occluders(args.scene, [&] {
-        return part_solver_for<Occlusion>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+        return part_solver_for<Occlusion>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders, .semantics = args.scene.semantics});
     });
     stage.done();
+    if (proc.rank == 0) warn_about_scene("certipose-part", part.solver().occlusion(), args.quiet);
 
     certipose::part_options opt;
     opt.facet.position_eps = args.position_eps;
@@ -184,6 +232,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.max_boxes = args.max_boxes;
     opt.threads = args.threads;
     opt.keep_boundary = args.boundary;
+    opt.keep_largest = args.keep_largest;
     opt.regions = args.scene.regions;  // each facet's VALID boxes, before they are written
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
     opt.stop = signals.token();
@@ -191,8 +240,9 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     if (progress)
         opt.progress = [](const certipose::part_progress& p) {
             const double rate = p.seconds > 0 ? static_cast<double>(p.facets_done) / p.seconds : 0.0;
-            std::fprintf(stderr, "\r%7zu / %zu facets  %9zu valid  %6.1f facets/s  ETA %-8s", p.facets_done,
-                         p.facets_total, p.valid, rate, duration_text(p.seconds_left).c_str());
+            std::fprintf(stderr, "\r\033[K%7zu / %zu facets  %9zu valid  %7.1f facets/s  ETA %-8s  %6.0f MB", p.facets_done,
+                         p.facets_total, p.valid, rate, duration_text(p.seconds_left).c_str(),
+                         static_cast<double>(resident_bytes()) / 1e6);
             return true;
         };
 
@@ -210,8 +260,12 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     }
     fs::create_directories(args.out);
     certipose::output_files files;
-    std::ostream& boxes = files.stream(args.out / "boxes.jsonl");
-    certipose::jsonl_sink<I> sink(boxes, certipose::checks_occlusion<Occlusion>);
+    std::optional<certipose::jsonl_sink<I>> jsonl;
+    std::optional<certipose::box_store_sink<I>> binary;
+    if (args.write_jsonl) jsonl.emplace(files.stream(args.out / "boxes.jsonl"), certipose::checks_occlusion<Occlusion>);
+    if (args.write_binary) binary.emplace(files.stream(args.out / "boxes.cpbx"), certipose::checks_occlusion<Occlusion>);
+    certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> sink{
+        {jsonl ? &*jsonl : nullptr, binary ? &*binary : nullptr}};
     const certipose::part_result r = solve(sink);
     if (progress) std::fputc('\n', stderr);
 
@@ -227,13 +281,23 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     s.settings.boundary = args.boundary;
     s.settings.occlusion = args.occlusion;
     s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
+    describe_run_settings(s, args, opt.facet, part.solver().occlusion());
     s.scene = extra.record;
     s.facets = r.facets;
     s.totals = {r.seconds, r.threads, static_cast<std::size_t>(proc.ranks), r.facets_selected, r.facets.size(), r.valid,
                 r.boundary, r.skipped, r.reason, signals.interrupted()};
-    files.close(args.out / "boxes.jsonl");
+    if (args.write_jsonl) files.close(args.out / "boxes.jsonl");
+    if (binary) {
+        binary->finish();
+        files.close(args.out / "boxes.cpbx");
+    }
     files.add(args.out / "summary.json", certipose::json_text(certipose::part_summary_to_json(s)));
     files.commit();
+    // A box file of an earlier run in this folder that this run did not write would contradict
+    // the new summary (which names the stores it wrote, settings.box_store): remove it.
+    std::error_code gone;
+    if (!args.write_jsonl) fs::remove(args.out / "boxes.jsonl", gone);
+    if (!args.write_binary) fs::remove(args.out / "boxes.cpbx", gone);
 
     if (!args.quiet) {
         std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %d rank(s) x %zu threads: %zu valid, %zu boundary "
@@ -246,7 +310,10 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
         if (!certipose::checks_occlusion<Occlusion>)
             std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint but occlusion\n");
         if (const std::string text = scene_text(args.scene); !text.empty()) std::printf("  scene: %s\n", text.c_str());
-        std::printf("wrote %s and %s\n", (args.out / "summary.json").string().c_str(), (args.out / "boxes.jsonl").string().c_str());
+        std::printf("wrote %s", (args.out / "summary.json").string().c_str());
+        if (args.write_jsonl) std::printf(", %s", (args.out / "boxes.jsonl").string().c_str());
+        if (args.write_binary) std::printf(", %s", (args.out / "boxes.cpbx").string().c_str());
+        std::printf("\n");
     }
     return signals.interrupted() ? signals.exit_code() : exit_ok;
 }
@@ -287,7 +354,10 @@ int main(int argc, char** argv) {
         std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}};
         add_occluder_inputs(inputs, args->scene);
         certipose::refuse_overwriting_inputs(
-            inputs, {{"--out", args->out}, {"--out", args->out / "summary.json"}, {"--out", args->out / "boxes.jsonl"}});
+            inputs, {{"--out", args->out},
+                     {"--out", args->out / "summary.json"},
+                     {"--out", args->out / "boxes.jsonl"},
+                     {"--out", args->out / "boxes.cpbx"}});
         const interruption signals;
         stage_line stage("certipose-part", args->quiet || proc.rank != 0);
         stage.show("reading " + args->mesh.string());

@@ -32,6 +32,7 @@
 #include <certipose/coverage/inspect_boxes.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/io/output_files.hpp>
+#include <certipose/io/box_store.hpp>
 #include <certipose/io/part_files.hpp>
 #include <certipose/io/plan_files.hpp>
 #include <certipose/part/part_solver.hpp>
@@ -83,7 +84,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
-    app.add_option("--part-results", part_results, "a certipose-part output folder (summary.json, boxes.jsonl)")->type_name("DIR")->check(CLI::ExistingDirectory);
+    app.add_option("--part-results", part_results, "a certipose-part output folder (summary.json, and boxes.cpbx or boxes.jsonl)")->type_name("DIR")->check(CLI::ExistingDirectory);
     app.add_option("--position-eps", position_eps, "one-shot mode: run the whole part first at this threshold (metres)")->type_name("METRES");
     app.add_option("--orientation-eps", orientation_eps, "one-shot mode: orientation threshold (radians)")->type_name("RADIANS");
     app.add_option("--facets", facets, "one-shot mode: facets to solve, e.g. 0,5,17-30 (default: all)")->type_name("LIST");
@@ -266,11 +267,12 @@ int run(const arguments& args, const interruption& signals) {
     certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
     certipose_program::apply_placement(input.task, args.scene, mesh);
     const scene extra = read_scene(args.scene, &stage);
-    stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
+    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces");
     const auto part = naming_occluders(args.scene, [&] {
-        return certipose::part_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+        return certipose::part_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders, .semantics = args.scene.semantics});
     });
     stage.done();
+    warn_about_scene("certipose-plan", part.solver().occlusion(), args.quiet);
     const auto& solver = part.solver();
     const bool progress = show_progress(args.quiet);
 
@@ -299,7 +301,7 @@ int run(const arguments& args, const interruption& signals) {
         check_run(run, here, args.part_results);
         trust_run = !run.mesh.digest.empty();
         records = run.facets;
-        certipose::read_boxes_jsonl(args.part_results / "boxes.jsonl", [&](const certipose::part_box& b) {
+        certipose::read_part_boxes(args.part_results, run.settings.box_store, [&](const certipose::part_box& b) {
             if (b.facet >= mesh.num_faces())
                 throw certipose::out_of_range("facet", b.facet, mesh.num_faces());
             if (b.box.cls != certipose::box_class::valid || !b.occlusion_checked) return;
@@ -471,6 +473,7 @@ int main(int argc, char** argv) {
         if (!args->part_results.empty()) {
             inputs.push_back({"--part-results", args->part_results / "summary.json"});
             inputs.push_back({"--part-results", args->part_results / "boxes.jsonl"});
+            inputs.push_back({"--part-results", args->part_results / "boxes.cpbx"});
         }
         std::vector<certipose::named_path> outputs{{"--out", args->out}};
         if (!args->ply.empty()) outputs.push_back({"--ply", args->ply});

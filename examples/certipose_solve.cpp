@@ -57,33 +57,41 @@ template <class Occlusion>
 certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                       const certipose::inspection_task& task, std::size_t facet,
                                       const certipose::solve_options& options, const certipose_program::scene& scene,
-                                      const certipose_program::scene_arguments& scene_args) {
+                                      const certipose_program::scene_arguments& scene_args, bool quiet) {
     // With aabb: exactly the pipeline certipose::precompiled instantiates.
     using calibrated = certipose::with_camera<certipose::calibrated_camera>;
     using solver = certipose::pose_solver<std::conditional_t<std::is_same_v<Occlusion, certipose::aabb_occlusion>, calibrated,
                                                              certipose::with_occlusion<Occlusion, calibrated>>>;
-    const auto built = [&] { return solver(mesh, camera, task, {.occluders = scene.occluders}); };
-    return certipose_program::naming_occluders(scene_args, built).solve(facet, options);
+    const auto built = [&] { return solver(mesh, camera, task, {.occluders = scene.occluders, .semantics = scene_args.semantics}); };
+    const auto s = certipose_program::naming_occluders(scene_args, built);
+    certipose_program::warn_about_scene("certipose-solve", s.occlusion(), quiet);
+    if constexpr (std::is_same_v<Occlusion, certipose::aabb_occlusion>)
+        if (const auto* survey = s.occlusion().survey(); survey && !quiet && facet < survey->hidden.size() &&
+                                                         certipose::material_in_front(survey->hidden[facet]))
+            if (const auto why = survey->why_hidden(facet))
+                std::cerr << "certipose-solve: warning: facet " << facet << " is " << *why
+                          << ": no camera can inspect it\n";
+    return s.solve(facet, options);
 }
 
 certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
                                  const certipose::inspection_task& task, const certipose_solve::arguments& args,
                                  certipose::solve_options options, const certipose_program::scene& scene) {
     options.progress = progress_printer(args.quiet);
-    // Building the solver checks that the part is a closed solid (the occlusion policies need
-    // one): seconds for a large mesh, so say so on a terminal.
+    // Building the solver builds the occlusion scene (checks the part is a closed solid, or
+    // surveys a triangle soup): seconds for a large mesh, so say so on a terminal.
     certipose_program::stage_line stage("certipose-solve", args.quiet || args.occlusion == certipose_solve::occlusion_mode::none);
-    stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid, then solving");
+    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces, then solving");
     certipose::solve_result<I> r;
     switch (args.occlusion) {
         case certipose_solve::occlusion_mode::aabb:
-            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
+            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
             break;
         case certipose_solve::occlusion_mode::boolean:
-            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
+            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
             break;
         case certipose_solve::occlusion_mode::none:
-            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene);
+            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
             break;
     }
     if (options.progress) std::fputc('\n', stderr);

@@ -110,12 +110,13 @@ int run(const arguments& args, const interruption& signals) {
     certipose_program::apply_placement(input.task, args.scene, mesh);
     const std::vector<certipose::pose_input> poses = certipose::read_poses(args.poses);
     const scene extra = read_scene(args.scene, &stage);
-    stage.show("checking that the " + std::to_string(mesh.num_faces()) + " faces bound a closed solid");
+    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces");
     const auto solver = naming_occluders(args.scene, [&] {
-        return certipose::pose_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders});
+        return certipose::pose_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders, .semantics = args.scene.semantics});
     });
     certipose::facet_inspector<policies> inspector(solver);
     stage.done();
+    warn_about_scene("certipose-verify", solver.occlusion(), args.quiet);
 
     double total = 0;
     for (double a : inspector.areas()) total += a;

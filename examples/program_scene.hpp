@@ -89,9 +89,44 @@ decltype(auto) naming_occluders(const scene_arguments& args, Build&& build) {
                 i = 10 * i + static_cast<std::size_t>(what[end] - '0');
             if (i < args.occluders.size())
                 throw certipose::mesh_error("--occluder " + args.occluders[i].path.string() + ": " + what +
-                                            " (every occluder must be a closed solid)");
+                                            " (with --mesh-semantics solid every occluder must be a closed solid)");
         }
         throw;
+    }
+}
+
+/// What a triangle-soup survey found, in one line: "6 bodies (6 closed), 2272 intersecting
+/// face pairs, 40 buried facets" (empty for a clean mesh).
+inline std::string survey_text(const certipose::mesh_survey& s) {
+    std::string out = std::to_string(s.bodies) + (s.bodies == 1 ? " body" : " bodies") + " (" +
+                      std::to_string(s.closed_bodies) + " closed)";
+    const auto add = [&](std::size_t n, const char* what) {
+        if (n) out += ", " + std::to_string(n) + " " + what;
+    };
+    add(s.intersecting_pairs, "intersecting face pairs");
+    add(s.duplicate_faces, "duplicate faces");
+    add(s.open_edges, "open edges");
+    add(s.nonmanifold_edges, "non-manifold edges");
+    add(s.inward_bodies, "inward-facing bodies");
+    add(s.buried, "buried facets");
+    add(s.covered, "covered facets");
+    return out;
+}
+
+/// When the occlusion reads the scene as a triangle soup, says so on stderr with what the
+/// survey found and an example of each kind (unless quiet): the run goes on, but the user
+/// should know their mesh is not a clean solid and which facets are skipped for it.
+template <class Occlusion>
+void warn_about_scene(const char* program, const Occlusion& occlusion, bool quiet) {
+    if constexpr (requires { occlusion.survey(); }) {
+        const certipose::mesh_survey* s = occlusion.survey();
+        if (!s || quiet) return;
+        std::cerr << program << ": warning: occlusion reads the scene as a triangle soup (a sight line is blocked by "
+                  << "any triangle; docs/occlusion.md#dirty-meshes)";
+        if (!occlusion.why_not_solid().empty())
+            std::cerr << " because it is not a set of clean closed solids: " << occlusion.why_not_solid();
+        std::cerr << "\n" << program << ": warning: " << survey_text(*s) << "\n";
+        for (const auto& e : s->examples) std::cerr << program << ": warning:   " << e << "\n";
     }
 }
 

@@ -59,6 +59,7 @@
 #include <certipose/camera/camera_model.hpp>
 #include <certipose/error.hpp>
 #include <certipose/io/calibration.hpp>
+#include <certipose/occlusion/mesh_semantics.hpp>
 #include <certipose/pose/placement_tolerance.hpp>
 #include <certipose/solver/camera_regions.hpp>
 #include <certipose/solver/paving.hpp>
@@ -207,6 +208,8 @@ struct scene_arguments {
     /// --working-distance and --min-view-angle: set exactly when --camera is a calibration file
     std::optional<certipose::distance_range> working_distance;
     std::optional<double> min_view_angle;
+    /// --mesh-semantics: how the occlusion reads the part and the occluders
+    certipose::mesh_semantics semantics = certipose::mesh_semantics::automatic;
 };
 
 /// The scene options as given (CLI11 fills them; parse_scene_options checks them).
@@ -214,6 +217,7 @@ struct scene_options_text {
     std::vector<std::string> occluders, keep_in, keep_out;
     std::string part_tolerance, datum;
     std::string working_distance, min_view_angle;
+    std::string mesh_semantics = "auto";
 };
 
 /// MESH or MESH:SCALE (see the header comment); the file must exist, as --mesh's must.
@@ -278,6 +282,12 @@ inline void add_scene_options(CLI::App& app, scene_options_text& text) {
                    "with a calibration file as --camera: the smallest angle (radians, [0, pi/2)) between the "
                    "line of sight and the facet's plane (the camera JSON's task.min_view_angle)")
         ->type_name("RAD");
+    app.add_option("--mesh-semantics", text.mesh_semantics,
+                   "how occlusion reads the meshes: solid (closed solids only), soup (any triangles: overlapping "
+                   "bodies, duplicates, open seams; a sight line is blocked by any triangle), or auto (default: "
+                   "solid when every mesh is one, else soup, with a warning)")
+        ->type_name("MODE")
+        ->check(CLI::IsMember({"auto", "solid", "soup"}));
 }
 
 /// N comma-separated finite numbers, or a usage error naming the option and the text.
@@ -341,6 +351,9 @@ inline void parse_camera_options(const scene_options_text& text, const std::file
 inline scene_arguments parse_scene_options(const scene_options_text& text, const std::filesystem::path& camera) {
     scene_arguments s;
     parse_camera_options(text, camera, s);
+    s.semantics = text.mesh_semantics == "solid"  ? certipose::mesh_semantics::solid
+                  : text.mesh_semantics == "soup" ? certipose::mesh_semantics::soup
+                                                  : certipose::mesh_semantics::automatic;
     for (const auto& o : text.occluders) s.occluders.push_back(parse_occluder(o));
     for (const auto& r : text.keep_in) s.regions.keep_in.push_back(parse_region("--keep-in", r));
     for (const auto& r : text.keep_out) s.regions.keep_out.push_back(parse_region("--keep-out", r));
@@ -451,6 +464,16 @@ private:
     const char* program_;
     bool on_, shown_ = false;
 };
+
+/// This process's resident memory in bytes (Linux /proc/self/statm), or 0 where it cannot be read:
+/// the progress lines show it, so that a user sees a large run's footprint before it hurts.
+inline std::size_t resident_bytes() {
+    std::ifstream in("/proc/self/statm");
+    std::size_t pages = 0, resident = 0;
+    if (!(in >> pages >> resident)) return 0;
+    const long page = ::sysconf(_SC_PAGESIZE);
+    return resident * static_cast<std::size_t>(page > 0 ? page : 4096);
+}
 
 /// "1h02m", "3m07s", "12.3s".
 inline std::string duration_text(double s) {

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev
           libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev
           libopenmpi-dev openmpi-bin libglpk-dev clang-14 libclang-rt-14-dev libyaml-cpp-dev libtinygltf-dev
-          chromium)
+          chromium python3-numpy python3-pytest)
 # Node.js bundles the web viewer (certipose-export --format html) and runs its tests; a machine
 # that has no `node` gets Debian's.
 command -v node >/dev/null || packages+=(nodejs npm)

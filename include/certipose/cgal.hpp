@@ -21,6 +21,7 @@
 #include "certipose/io/read_mesh.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_aabb_occlusion.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_boolean_occlusion.hpp"  // IWYU pragma: export
+#include "certipose/occlusion/cgal_mesh_survey.hpp"  // IWYU pragma: export
 #include "certipose/verify/point_check.hpp"  // IWYU pragma: export
 
 #include "certipose/detail/precompiled.hpp"  // IWYU pragma: export

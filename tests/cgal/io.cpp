@@ -4,6 +4,7 @@
 // an independent reader, like MeshLab's and ParaView's.
 #include <certipose/interval/boost_interval.hpp>
 #include <certipose/interval/cgal_interval.hpp>
+#include <certipose/io/box_store.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/io/ply.hpp>
 #include <certipose/coverage/deployment.hpp>
@@ -289,6 +290,24 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
                  "width_px": 2448, "height_px": 2048, "d_min": 0.4, "d_max": 0.8},
                  "task": {"min_view_angle": 0.35, "placement_tolerance": {"translation": [0.001, 0.001, 0.001], "rotation": -0.01}}})");
          }},
+        {"box store truncated", [&] {
+             const fs::path store = dir / "boxes.cpbx";
+             {
+                 std::ofstream out(store, std::ios::binary);
+                 certipose::box_store_sink<certipose::boost_interval> sink(out, true);
+                 certipose::facet_outcome<certipose::boost_interval> o;
+                 o.record.index = 3;
+                 o.boxes.resize(1);
+                 for (std::size_t k = 0; k < 3; ++k) {
+                     o.boxes[0].box.position[k] = certipose::boost_interval(0.0, 1.0);
+                     o.boxes[0].box.orientation[k] = certipose::boost_interval(0.0, 1.0);
+                 }
+                 sink.facet(o);
+             }
+             fs::resize_file(store, fs::file_size(store) - 7);
+             certipose::read_box_store(store, [](const certipose::part_box&) {});
+         }},
+        {"not a box store", [&] { certipose::read_box_store(file("boxes.cpbx", tetra_off), [](const certipose::part_box&) {}); }},
         {"output is an input", [&] {
              certipose::refuse_overwriting_inputs({{"--mesh", file("part.off", tetra_off)}}, {{"--out", dir / "." / "part.off"}});
          }},

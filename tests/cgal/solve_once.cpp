@@ -2,6 +2,7 @@
 // assertions on (the solver suite runs in Release only, where compiling the pipelines once more
 // would not fit CI's time), so the default pipeline — its paving, inner contraction, occlusion
 // cuts, corner boxes and orientation stage, header-only here — is exercised sanitized too.
+#include "dirty_scene.hpp"
 #include "solver_support.hpp"
 
 #include <certipose/io/json.hpp>
@@ -74,4 +75,37 @@ TEST_CASE("a placement tolerance with a fixed plate, grown and budget-stopped, s
     const auto cut_rep = check_placed(cut, part().mesh, camera, solver.range(), task.min_view_angle, *solver.placement(),
                                       fixed, 1, 2, 10, 40);
     CHECK(cut_rep.violations == 0);
+}
+
+TEST_CASE("a dirty mesh read as a triangle soup, sanitized: the survey, skipped facets, completed and budget-stopped") {
+    // Overlapping bodies, a face-to-face contact, a duplicated shell and an open sheet
+    // (tests/dirty_scene.hpp): the survey, then the piercer's top (next to the overlap) and the prism's top solved
+    // with the default paving, completed and stopped by the box budget, every VALID box checked
+    // with sight lines cast against the whole soup and no box corner inside material.
+    const auto& s = dirty_test::scene();
+    const thin_lens_camera camera(design_camera_parameters());
+    const inspection_task task{.min_view_angle = 0.35};
+    const pose_solver<> solver(dirty_test::mesh(), camera, task, pose_solver<>::setup{.semantics = mesh_semantics::automatic});
+    REQUIRE(solver.occlusion().semantics() == mesh_semantics::soup);
+    CHECK(solver.occlusion().survey()->buried == 2);
+    CHECK(solver.solve(s.piercer, {.position_eps = 0.4, .orientation_eps = 0.38}).stats.valid == 0);  // buried
+    std::size_t checked = 0;
+    for (std::size_t f : {s.piercer + 2, s.prism})
+        for (std::size_t budget : {std::size_t{0}, std::size_t{200}}) {
+            solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
+            if (budget) o.max_boxes = budget;
+            const auto r = solver.solve(f, o);
+            CHECK(r.stats.valid > 0);
+            const auto rep = check_valid_boxes(r, dirty_test::mesh(), camera, solver.range(), task.min_view_angle, 2, 7, true, 20);
+            CHECK(rep.violations == 0);
+            checked += rep.valid_boxes;
+            for (const auto& cb : r.boxes)
+                if (cb.cls == box_class::valid)
+                    for (int k = 0; k < 8; ++k)
+                        CHECK_FALSE(dirty_test::inside_closed_body(
+                            {k & 1 ? upper(cb.box.position[0]) : lower(cb.box.position[0]),
+                             k & 2 ? upper(cb.box.position[1]) : lower(cb.box.position[1]),
+                             k & 4 ? upper(cb.box.position[2]) : lower(cb.box.position[2])}));
+        }
+    MESSAGE("dirty mesh, sanitized: " << checked << " VALID boxes checked");
 }

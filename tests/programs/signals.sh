@@ -3,7 +3,7 @@
 #   signals.sh SOLVE PART MESH CAMERA WORK_DIR [PLAN]
 # certipose-solve must stop, write nothing (no result, no PLY, no temporary) and exit 130/143;
 # certipose-part must stop, leave a readable summary.json marked interrupted with the facets it
-# finished, boxes.jsonl, no temporary, and exit 130/143; certipose-plan (one-shot mode, given as
+# finished, boxes.jsonl and boxes.cpbx (the same boxes, counted in its header), no temporary, and exit 130/143; certipose-plan (one-shot mode, given as
 # PLAN) must stop, write neither PLAN.json nor its PLY, say so in one line and exit 130/143.
 set -uo pipefail
 solve=$1 part=$2 mesh=$3 camera=$4 work=$5 plan=${6:-}
@@ -40,8 +40,18 @@ for sig in INT TERM; do
       --threads 2 --out "$out" --quiet 2>"$work/part-$sig.stderr"
   rc=$?
   [ $rc -eq "$expected" ] || fail "certipose-part on SIG$sig exited $rc, expected $expected: $(cat "$work/part-$sig.stderr")"
-  [ -f "$out/summary.json" ] && [ -f "$out/boxes.jsonl" ] || fail "certipose-part on SIG$sig wrote: $(ls -A "$out" 2>&1)"
-  [ "$(ls -A "$out" | wc -l)" -eq 2 ] || fail "certipose-part on SIG$sig left extra files: $(ls -A "$out")"
+  [ -f "$out/summary.json" ] && [ -f "$out/boxes.jsonl" ] && [ -f "$out/boxes.cpbx" ] ||
+    fail "certipose-part on SIG$sig wrote: $(ls -A "$out" 2>&1)"
+  [ "$(ls -A "$out" | wc -l)" -eq 3 ] || fail "certipose-part on SIG$sig left extra files: $(ls -A "$out")"
+  # The binary store holds the same boxes, and its header counts them (a whole store).
+  python3 - "$out" <<'EOF2' || fail "certipose-part on SIG$sig: boxes.cpbx does not match boxes.jsonl"
+import os, struct, sys
+d = sys.argv[1]
+lines = sum(1 for l in open(os.path.join(d, "boxes.jsonl")) if l.strip())
+head = open(os.path.join(d, "boxes.cpbx"), "rb").read(32)
+count = struct.unpack_from("<Q", head, 24)[0]
+assert head[:8] == b"CPBOXES\0" and count == lines == (os.path.getsize(os.path.join(d, "boxes.cpbx")) - 32) // 104, (count, lines)
+EOF2
   grep -q '"interrupted": *true' "$out/summary.json" || fail "certipose-part's summary is not marked interrupted"
   # Every facet with boxes in boxes.jsonl is one the summary lists as finished, and fewer than all.
   finished=$(grep -o '"index": *[0-9]*' "$out/summary.json" | grep -o '[0-9]*$' | sort -n | uniq)

@@ -10,7 +10,10 @@
 //
 // summary.json: {"format": "certipose-part-summary", "version": 1, "mesh": {"path", "faces", "scale",
 // "digest"}, "camera": {as in the single-facet result},
-// "task", "settings", "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none),
+// "task", "settings" (every option that changes the answer: ε_p, ε_o, budgets, occlusion,
+// "mesh_semantics", "paving" and carving's steps, "refine_seconds", "grow", "max_boxes",
+// "facets", "keep_largest", "box_store"), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
+// "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none),
 // "facets": [{"index", "valid", "boundary", "seconds", "termination",
 // "reason" (when skipped), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
@@ -120,6 +123,27 @@ struct part_summary {
         bool boundary = false;
         std::string occlusion;  ///< "aabb", "boolean", "none", or the policy's name
         bool occlusion_checked = true;
+        // Everything else that changes the answer. Written; of these, mesh_semantics, paving,
+        // keep_largest and box_store are read back (what certipose-plan needs).
+        std::string mesh_semantics = "solid";  ///< how occlusion read the meshes: "solid", "soup" ("none": unchecked)
+        std::string box_store = "jsonl";       ///< the box files written: "jsonl", "binary" or "both"
+        std::string paving = "default";        ///< "default" (carving) or "paper"
+        /// carving's steps and tuning (all off for the paper's paving)
+        bool inner_contraction = true, occlusion_cuts = true, leaf_corner_boxes = true;
+        std::size_t corner_depth = 0;
+        double corner_rest_min_pieces = 0;
+        std::optional<double> refine_seconds{};  ///< --refine
+        bool grow = false;                       ///< --grow
+        std::optional<std::size_t> max_boxes{};  ///< the run's box budget
+        std::string facets{};                    ///< the --facets selection as given; empty: all
+        std::optional<std::size_t> keep_largest{};  ///< only the K largest VALID boxes per facet kept
+    };
+    /// What the survey of a triangle soup found (occlusion/mesh_survey.hpp; written when the
+    /// scene was read as one).
+    struct survey_record {
+        std::size_t bodies = 0, closed_bodies = 0, inward_bodies = 0, open_edges = 0, nonmanifold_edges = 0,
+                    duplicate_faces = 0, intersecting_pairs = 0, buried = 0, covered = 0;
+        std::vector<std::string> examples{};
     };
     struct totals_record {
         double seconds = 0;
@@ -132,6 +156,7 @@ struct part_summary {
     result_document::camera_record camera;
     result_document::task_record task;
     settings_record settings;
+    std::optional<survey_record> survey{};
     /// The run's external occluders and camera regions ("occluders", "keep_in", "keep_out").
     scene_record scene{};
     std::vector<facet_record> facets;
@@ -174,7 +199,33 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
                      {"time_limit", optional(s.settings.time_limit, "settings.time_limit")},
                      {"boundary", s.settings.boundary},
                      {"occlusion", s.settings.occlusion},
-                     {"occlusion_checked", s.settings.occlusion_checked}};
+                     {"occlusion_checked", s.settings.occlusion_checked},
+                     {"mesh_semantics", s.settings.mesh_semantics},
+                     {"paving", s.settings.paving},
+                     {"inner_contraction", s.settings.inner_contraction},
+                     {"occlusion_cuts", s.settings.occlusion_cuts},
+                     {"leaf_corner_boxes", s.settings.leaf_corner_boxes},
+                     {"corner_depth", s.settings.corner_depth},
+                     {"corner_rest_min_pieces", finite(s.settings.corner_rest_min_pieces, "settings.corner_rest_min_pieces")},
+                     {"refine_seconds", optional(s.settings.refine_seconds, "settings.refine_seconds")},
+                     {"grow", s.settings.grow},
+                     {"max_boxes", s.settings.max_boxes ? ordered_json(*s.settings.max_boxes) : ordered_json(nullptr)},
+                     {"facets", s.settings.facets.empty() ? ordered_json("all") : ordered_json(s.settings.facets)},
+                     {"keep_largest", s.settings.keep_largest ? ordered_json(*s.settings.keep_largest) : ordered_json(nullptr)},
+                     {"box_store", s.settings.box_store}};
+    if (s.survey) {
+        const auto& v = *s.survey;
+        j["survey"] = {{"bodies", v.bodies},
+                       {"closed_bodies", v.closed_bodies},
+                       {"inward_bodies", v.inward_bodies},
+                       {"open_edges", v.open_edges},
+                       {"nonmanifold_edges", v.nonmanifold_edges},
+                       {"duplicate_faces", v.duplicate_faces},
+                       {"intersecting_pairs", v.intersecting_pairs},
+                       {"buried", v.buried},
+                       {"covered", v.covered},
+                       {"examples", v.examples}};
+    }
     put_scene(j, s.scene);
     ordered_json facets = ordered_json::array();
     for (const facet_record& f : s.facets) {
@@ -185,6 +236,7 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
         r["seconds"] = finite(f.seconds, "facets.seconds");
         r["termination"] = to_string(f.termination);
         if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
+        if (f.dropped > 0) r["dropped"] = f.dropped;
         if (f.boundary > 0) {
             ordered_json reasons;
             for (std::size_t k = 0; k < boundary_reason_count; ++k)
@@ -240,6 +292,15 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
     if (const json* v = find(settings, "boundary"); v && v->is_boolean()) s.settings.boundary = v->get<bool>();
     if (const json* v = find(settings, "occlusion"); v && v->is_string()) s.settings.occlusion = v->get<std::string>();
     if (const json* v = find(settings, "occlusion_checked"); v && v->is_boolean()) s.settings.occlusion_checked = v->get<bool>();
+    if (const json* v = find(settings, "mesh_semantics"); v && v->is_string()) s.settings.mesh_semantics = v->get<std::string>();
+    if (const json* v = find(settings, "paving"); v && v->is_string()) s.settings.paving = v->get<std::string>();
+    if (const json* v = find(settings, "keep_largest"); v && !v->is_null())
+        s.settings.keep_largest = as_count(*v, "settings.keep_largest");
+    if (const json* v = find(settings, "box_store")) {
+        s.settings.box_store = as_string(*v, "settings.box_store", "\"jsonl\", \"binary\" or \"both\"");
+        if (s.settings.box_store != "jsonl" && s.settings.box_store != "binary" && s.settings.box_store != "both")
+            fail("settings.box_store", "expected \"jsonl\", \"binary\" or \"both\", got \"" + s.settings.box_store + "\"");
+    }
     s.scene = scene_from_json(j);
     const json& facets = require(j, "", "facets", "an array");
     if (!facets.is_array()) fail("facets", "expected an array, got " + describe(facets));
@@ -256,6 +317,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
         if (!term) fail(child(path, "termination"), "unknown termination \"" + t + "\"");
         r.termination = *term;
         if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
+        if (const json* dropped = find(f, "dropped")) r.dropped = as_count(*dropped, child(path, "dropped"));
         if (const json* reasons = find(f, "boundary_reasons")) {
             require_object(*reasons, child(path, "boundary_reasons"));
             for (std::size_t k = 0; k < boundary_reason_count; ++k)

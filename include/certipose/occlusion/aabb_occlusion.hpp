@@ -12,6 +12,7 @@
 #include "certipose/interval/concept.hpp"
 #include "certipose/occlusion/concept.hpp"
 #include "certipose/occlusion/detail/box_bounds.hpp"
+#include "certipose/occlusion/mesh_survey.hpp"
 #include "certipose/pose/pose_box.hpp"
 
 #include <Eigen/Geometry>
@@ -19,7 +20,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace certipose {
@@ -50,6 +53,25 @@ public:
     /// Part plus external occluders (each a closed solid; they may touch the part but must not
     /// enclose the facet). Facet indices refer to `part`.
     aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders);
+
+    /// The same, reading the scene as `semantics` says (occlusion/mesh_survey.hpp). `solid`
+    /// validates as above; `soup` accepts any triangles (overlapping bodies, duplicate faces,
+    /// open seams) and surveys them; `automatic` is `solid` when the meshes pass its checks and
+    /// `soup` otherwise (`why_not_solid` then says what failed).
+    aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders, mesh_semantics semantics);
+
+    /// How the scene is read: `solid` or `soup` (`automatic` resolved).
+    mesh_semantics semantics() const noexcept;
+    /// The survey of the scene (part faces first, then each occluder's) when it is read as a
+    /// triangle soup; null for solids.
+    const mesh_survey* survey() const noexcept;
+    /// Why the scene was not taken as solids (the mesh_error of the solid checks); empty for
+    /// solids and for a soup asked for as such.
+    const std::string& why_not_solid() const noexcept;
+    /// Why no camera can inspect facet `facet` of the part (buried, covered, a duplicate), when
+    /// the survey proved it; nothing otherwise (always nothing for solids). The part solver
+    /// skips such facets with this reason.
+    std::optional<std::string> hidden(std::size_t facet) const;
 
     /// Classifies every camera position of `box` against facet `facet` of the part. Throws
     /// out_of_range("facet") and invalid_argument("box") (empty or unbounded box). With

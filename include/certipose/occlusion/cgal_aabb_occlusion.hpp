@@ -18,13 +18,17 @@
 // or a planar wall — all scene triangles in one plane that separates the box from f cover
 // every crossing (see planar_wall_blocks). So the policy may say PARTIAL where the boolean test
 // says OCCLUDED, and never VISIBLE where a sight line is blocked nor OCCLUDED where one is free.
+// Read as a triangle soup (mesh_semantics::soup, occlusion/mesh_survey.hpp) there is no inside:
+// the certificates that need a closed part (boxes behind or in the facet plane) and the planar
+// wall (whose rim is found by edges used once) are not used, and facets the survey finds buried
+// or covered are OCCLUDED from everywhere.
 // A box touching or crossing f's plane is never VISIBLE (some points see f edge-on or from
 // behind). docs/occlusion.md has the details and the measured speed.
 //
 // The class is declared in occlusion/aabb_occlusion.hpp (no CGAL); this header defines it,
 // unless CERTIPOSE_PRECOMPILED says the certipose::precompiled library does (detail/config.hpp).
-// Built once per scene: validates every mesh as a closed solid (detail/cgal_scene.hpp), copies
-// the triangles and builds the tree. `classify` is const and thread-safe: one object may be
+// Built once per scene: validates every mesh as a closed solid (detail/cgal_scene.hpp), or
+// surveys the triangle soup, copies the triangles and builds the tree. `classify` is const and thread-safe: one object may be
 // shared by many threads (copies share the immutable scene). It holds round-to-nearest for its
 // duration, so callers may hold an interval rounding guard.
 #pragma once
@@ -41,6 +45,7 @@
 #include "certipose/occlusion/detail/box_bounds.hpp"
 #include "certipose/occlusion/detail/cgal_scene.hpp"
 #include "certipose/occlusion/detail/exact_geometry.hpp"
+#include "certipose/occlusion/cgal_mesh_survey.hpp"
 #include "certipose/pose/pose_box.hpp"
 
 #include <CGAL/AABB_traits.h>
@@ -59,6 +64,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <span>
 #include <string>
@@ -104,6 +110,10 @@ struct aabb_scene {
     std::vector<triangle_3> cgal_tris;
     tree_type tree;
     std::size_t part_faces = 0;
+    /// Read as a triangle soup: no inside, so no OCCLUDED from "behind the facet".
+    bool soup = false;
+    std::optional<mesh_survey> survey;
+    std::string why_not_solid;
     mutable std::atomic<std::uint64_t> exact_clips{0};
 };
 
@@ -182,7 +192,11 @@ inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, 
         return false;
     };
 
-    if (shared == 3) return hit::yes;  // a duplicate of the facet (invalid scene): be conservative
+    // A face with f's three vertices is f as a point set (a duplicate, or the face of another
+    // body touching f, in a triangle soup): T ∩ H = f, in the facet plane. Unreachable (such a
+    // face lies in the closed half-space behind the plane, handled above); kept so that no
+    // edit above makes it block.
+    if (shared == 3) return hit::no;
     if (shared == 2) {
         // Edge-adjacent: T = conv(e, w) with e a facet edge. H's face through e is planes[1+m]
         // for edge (f[m], f[m+1]); T meets H only in e iff w is strictly beyond that face, or
@@ -659,16 +673,55 @@ inline std::vector<const triangle_mesh*> scene_meshes(const triangle_mesh& part,
 
 CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part) : aabb_occlusion(part, {}) {}
 
-CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders) {
+CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders)
+    : aabb_occlusion(part, occluders, mesh_semantics::solid) {}
+
+CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders,
+                                              mesh_semantics semantics) {
     auto s = std::make_shared<detail::occ::aabb_scene>();
-    detail::occ::validate_solid(part, "aabb_occlusion: part");
-    for (std::size_t i = 0; i < occluders.size(); ++i)
-        detail::occ::validate_solid(occluders[i], "aabb_occlusion: occluder " + std::to_string(i));
+    const auto validate = [&] {
+        detail::occ::validate_solid(part, "aabb_occlusion: part");
+        for (std::size_t i = 0; i < occluders.size(); ++i)
+            detail::occ::validate_solid(occluders[i], "aabb_occlusion: occluder " + std::to_string(i));
+    };
+    if (semantics == mesh_semantics::solid) {
+        try {
+            validate();
+        } catch (const mesh_error& e) {
+            throw mesh_error(std::string(e.what()) +
+                             "; a mesh that is not a clean closed solid (CAD exports) is accepted as a triangle "
+                             "soup with mesh_semantics::soup (--mesh-semantics soup)");
+        }
+    } else if (semantics == mesh_semantics::automatic) {
+        try {
+            validate();
+        } catch (const mesh_error& e) {
+            s->soup = true;
+            s->why_not_solid = e.what();
+        }
+    } else {
+        s->soup = true;
+    }
     s->part_faces = part.num_faces();
     std::uint32_t offset = 0;
     for (const triangle_mesh* m : detail::occ::scene_meshes(part, occluders)) {
         detail::occ::append_triangles(s->tris, *m, offset);
         offset += static_cast<std::uint32_t>(m->num_vertices());
+    }
+    if (s->soup) {
+        if (occluders.empty()) {
+            s->survey = survey_mesh(part);
+        } else {  // one mesh of every scene triangle, part faces first: bodies may overlap across meshes
+            std::vector<Eigen::Vector3d> v;
+            std::vector<face_indices> f;
+            std::uint32_t base = 0;
+            for (const triangle_mesh* m : detail::occ::scene_meshes(part, occluders)) {
+                v.insert(v.end(), m->vertices().begin(), m->vertices().end());
+                for (const auto& t : m->faces()) f.push_back({t[0] + base, t[1] + base, t[2] + base});
+                base += static_cast<std::uint32_t>(m->num_vertices());
+            }
+            s->survey = survey_mesh(triangle_mesh(std::move(v), std::move(f)));
+        }
     }
     using P = detail::occ::epick::Point_3;
     for (const auto& t : s->tris)
@@ -677,6 +730,22 @@ CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::sp
                                   P(t.v[2][0], t.v[2][1], t.v[2][2]));
     s->tree.rebuild(s->cgal_tris.cbegin(), s->cgal_tris.cend());  // built now: const queries
     scene_ = std::move(s);
+}
+
+CERTIPOSE_DECL mesh_semantics aabb_occlusion::semantics() const noexcept {
+    return scene_->soup ? mesh_semantics::soup : mesh_semantics::solid;
+}
+
+CERTIPOSE_DECL const mesh_survey* aabb_occlusion::survey() const noexcept {
+    return scene_->survey ? &*scene_->survey : nullptr;
+}
+
+CERTIPOSE_DECL const std::string& aabb_occlusion::why_not_solid() const noexcept { return scene_->why_not_solid; }
+
+CERTIPOSE_DECL std::optional<std::string> aabb_occlusion::hidden(std::size_t facet) const {
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    if (!scene_->survey) return std::nullopt;
+    return scene_->survey->why_hidden(facet);
 }
 
 CERTIPOSE_DECL visibility aabb_occlusion::classify(const Eigen::AlignedBox3d& box, std::size_t facet,
@@ -691,6 +760,9 @@ CERTIPOSE_DECL visibility aabb_occlusion::explain(const Eigen::AlignedBox3d& box
     info = trace{};
     const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
     if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    // Buried in or covered by another body of a soup: every free sight line starts inside
+    // material (occlusion/mesh_survey.hpp), so no camera sees it.
+    if (scene_->survey && material_in_front(scene_->survey->hidden[facet])) return visibility::occluded;
     const detail::round_to_nearest_scope nearest;  // the error bounds assume it
     const scene_triangle& F = scene_->tris[facet];
     const pt lo{b.min().x(), b.min().y(), b.min().z()};
@@ -704,6 +776,9 @@ CERTIPOSE_DECL visibility aabb_occlusion::explain(const Eigen::AlignedBox3d& box
         const int s = side(fp, c);
         behind += s > 0, front += s < 0;
     }
+    // In a triangle soup nothing is inside: a position behind the facet may see its back
+    // through nothing. The constraints refuse such positions anyway (the backface test).
+    if (scene_->soup && front < 8) return visibility::partial;
     if (behind == 8) return visibility::occluded;  // facing away: inside the part
     if (front == 0) {
         // Behind or in the facet plane. An in-plane position outside the facet sees its
@@ -731,6 +806,9 @@ CERTIPOSE_DECL visibility aabb_occlusion::explain(const Eigen::AlignedBox3d& box
     // have a free sight line, which rules every certificate out at the cost of a few
     // segment queries.
     if (some_sight_line_free(*scene_, facet, lo, hi)) return visibility::partial;
+    // The wall certificate finds the rim of a wall by edges used once; in a soup a duplicated
+    // or folded triangle uses a rim edge twice and would hide it, so it is for solids only.
+    if (scene_->soup) return visibility::partial;
     if (planar_wall_blocks(H, *scene_, facet, first)) return visibility::occluded;
     // Try the planes of the other blocking triangles (each distinct plane once).
     std::vector<std::size_t> blockers;
@@ -777,6 +855,7 @@ CERTIPOSE_DECL bool aabb_occlusion::blockers(const Eigen::AlignedBox3d& box, std
     using namespace detail::occ;
     const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
     if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    if (scene_->survey && material_in_front(scene_->survey->hidden[facet])) return false;
     const detail::round_to_nearest_scope nearest;
     const scene_triangle& F = scene_->tris[facet];
     const pt lo{b.min().x(), b.min().y(), b.min().z()};

@@ -126,10 +126,15 @@ template <class Lazy>
 basic_boolean_occlusion<Lazy>::basic_boolean_occlusion(const triangle_mesh& part,
                                                   std::span<const triangle_mesh> occluders) {
     auto s = std::make_shared<scene>();
-    detail::occ::validate_solid(part, "boolean_occlusion: part");
-    for (std::size_t i = 0; i < occluders.size(); ++i)
-        detail::occ::validate_solid(occluders[i],
-                                    "boolean_occlusion: occluder " + std::to_string(i));
+    try {
+        detail::occ::validate_solid(part, "boolean_occlusion: part");
+        for (std::size_t i = 0; i < occluders.size(); ++i)
+            detail::occ::validate_solid(occluders[i], "boolean_occlusion: occluder " + std::to_string(i));
+    } catch (const mesh_error& e) {
+        throw mesh_error(std::string(e.what()) + "; the boolean test subtracts solids, so it needs closed, "
+                                                 "edge-manifold, self-intersection-free, outward-facing meshes; "
+                                                 "aabb_occlusion (--occlusion aabb) also reads a triangle soup");
+    }
     s->solids.push_back(detail::occ::to_surface_mesh<detail::occ::exact_kernel::Point_3>(part, "boolean_occlusion: part"));
     s->bboxes.push_back(part.bbox());
     for (std::size_t i = 0; i < occluders.size(); ++i) {

@@ -76,6 +76,7 @@ void encode(writer& w, const facet_outcome<I>& o) {
     w.put<std::uint64_t>(r.reason.size());
     w.bytes += r.reason;
     for (std::size_t k = 0; k < boundary_reason_count; ++k) w.put<std::uint64_t>(r.boundary_reasons[k]);
+    w.put<std::uint64_t>(r.dropped);
     w.put<std::uint64_t>(o.boxes.size());
     for (const auto& b : o.boxes) {
         w.put<std::uint8_t>(static_cast<std::uint8_t>(b.cls));
@@ -105,6 +106,7 @@ facet_outcome<I> decode(reader& rd) {
     r.reason.assign(rd.bytes.data() + rd.at, n);
     rd.at += n;
     for (std::size_t k = 0; k < boundary_reason_count; ++k) r.boundary_reasons[k] = rd.get<std::uint64_t>();
+    r.dropped = rd.get<std::uint64_t>();
     const auto boxes = rd.get<std::uint64_t>();
     o.boxes.reserve(boxes);
     const rounding_guard<I> rounding;  // building intervals from exact bounds

@@ -15,8 +15,9 @@
 // Before paving, a facet that provably no pose can inspect is skipped with the reason
 // (`uninspectable`): the facet cannot fit in the image from any distance ≤ d_max, no position
 // satisfies the distance, backface and viewing-angle constraints, or the occlusion policy proves
-// the whole search box occluded. These are certificates, like OCCLUDED: a skipped facet would
-// have had no VALID box.
+// the whole search box occluded, or (a triangle soup, occlusion/mesh_survey.hpp) the facet is
+// buried in another body, covered by one, or repeats an earlier facet. These are certificates,
+// like OCCLUDED: a skipped facet would have had no VALID box (a duplicate has its original's).
 //
 // Camera regions (`part_options::regions`, solver/camera_regions.hpp): each facet's result is
 // restricted to the allowed camera positions in its worker, right after its solve, so the
@@ -42,6 +43,7 @@
 #include <span>
 #include <stop_token>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -52,6 +54,7 @@
 #include "certipose/error.hpp"
 #include "certipose/orientation/certify.hpp"
 #include "certipose/solver/camera_regions.hpp"
+#include "certipose/solver/keep_largest.hpp"
 #include "certipose/solver/pose_solver.hpp"
 
 namespace certipose {
@@ -77,6 +80,7 @@ struct facet_record {
     double seconds = 0.0;
     facet_termination termination = facet_termination::completed;
     std::string reason;  ///< why it was skipped (empty otherwise)
+    std::size_t dropped = 0;  ///< VALID boxes found but not kept (part_options::keep_largest)
     std::array<std::size_t, boundary_reason_count> boundary_reasons{};
 };
 
@@ -114,6 +118,9 @@ struct part_options {
     /// Where the camera may stand: each facet's VALID boxes are restricted to these regions
     /// (solver/camera_regions.hpp) before the record is made and the sink sees them.
     camera_regions regions{};
+    /// Keep only the K largest VALID boxes of each facet (solver/keep_largest.hpp), after the
+    /// regions; the record counts the kept ones and the dropped ones apart.
+    std::optional<std::size_t> keep_largest{};
     /// Skip facets provably uninspectable before paving them (see the header comment).
     bool skip_uninspectable = true;
     /// Whole run: boxes processed (sum over facets, in facet order), wall time.
@@ -144,6 +151,17 @@ template <Interval I>
 struct collecting_sink {
     std::vector<facet_outcome<I>> outcomes;
     void facet(const facet_outcome<I>& o) { outcomes.push_back(o); }
+};
+
+/// A sink that hands each finished facet to every sink it points to, in turn (a null pointer is
+/// skipped): e.g. boxes.jsonl and boxes.cpbx written from one run.
+template <class... Sinks>
+struct tee_sink {
+    std::tuple<Sinks*...> sinks;
+    template <class Outcome>
+    void facet(const Outcome& o) {
+        std::apply([&](auto*... s) { ((s ? s->facet(o) : void()), ...); }, sinks);
+    }
 };
 
 /// Every facet of a part (see the header comment). The mesh must outlive the solver.
@@ -178,6 +196,11 @@ private:
 template <class Policies>
 std::optional<std::string> part_solver<Policies>::uninspectable(std::size_t index) const {
     using I = interval_type;
+    // 0. The occlusion policy's survey of a triangle soup: buried, covered, a duplicate.
+    if constexpr (requires(const typename solver_type::occlusion_type& o) {
+                      { o.hidden(index) } -> std::same_as<std::optional<std::string>>;
+                  })
+        if (auto why = solver_.occlusion().hidden(index)) return why;
     const facet& f = solver_.part().facet(index);
     const distance_range range = solver_.range();
     // 1. Too large for the image: two points seen from p within the circumscribed cone of
@@ -313,6 +336,7 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
             return it;
         }
         restrict_to_regions(r, options.regions, fo.position_eps);  // nothing without regions
+        if (options.keep_largest) rec.dropped = keep_largest_valid(r, *options.keep_largest);
         rec.seconds = r.stats.seconds;
         rec.valid = r.stats.valid;
         rec.boundary = r.stats.boundary;

@@ -57,6 +57,7 @@
 #include "certipose/constraints/concept.hpp"
 #include "certipose/detail/format.hpp"
 #include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/mesh_semantics.hpp"
 #include "certipose/orientation/concept.hpp"
 #include "certipose/solver/contraction.hpp"
 #include "certipose/solver/detail/box_certifier.hpp"
@@ -144,6 +145,10 @@ public:
         /// A ready occlusion policy (e.g. one shared by several solvers); built from the part
         /// and `occluders` when absent. Refused with a placement tolerance in the task.
         std::optional<occlusion_type> occlusion{};
+        /// How the occlusion policy reads the part and the occluders (occlusion/mesh_survey.hpp):
+        /// closed solids (the default), a triangle soup, or whichever the meshes are. A policy
+        /// without a constructor taking it reads solids only and refuses anything else.
+        mesh_semantics semantics = mesh_semantics::solid;
         /// The orientation policy (with its options).
         orientation_type orientation{};
         /// The constraint set's run-time parameters (solver/policies.hpp, constraints/concept.hpp).
@@ -163,7 +168,7 @@ public:
         : part_(&part),
           camera_(std::move(camera)),
           task_(task),
-          occlusion_(s.occlusion ? std::move(*s.occlusion) : occlusion_type(part, s.occluders)),
+          occlusion_(s.occlusion ? std::move(*s.occlusion) : make_occlusion(part, s.occluders, s.semantics)),
           orientation_(std::move(s.orientation)),
           constraint_parameters_(std::move(s.constraints)),
           contraction_(std::move(s.contraction)),
@@ -195,6 +200,20 @@ public:
         // where they were given, instead of at the first solve.
         (void)make_constraint_set<constraint_set_type>(position_problem{part.facet(0), range_, task_},
                                                        constraint_parameters_);
+    }
+
+    /// The occlusion policy for the scene, read as `semantics` says (setup::semantics).
+    static occlusion_type make_occlusion(const triangle_mesh& part, std::span<const triangle_mesh> occluders,
+                                         mesh_semantics semantics) {
+        if constexpr (std::constructible_from<occlusion_type, const triangle_mesh&, std::span<const triangle_mesh>,
+                                              mesh_semantics>) {
+            return occlusion_type(part, occluders, semantics);
+        } else {
+            if (semantics == mesh_semantics::soup && checks_occlusion<occlusion_type>)
+                throw invalid_argument("semantics", "pose_solver: this occlusion policy reads closed solids only; "
+                                                    "aabb_occlusion reads a triangle soup");
+            return occlusion_type(part, occluders);
+        }
     }
 
     /// A temporary mesh would be destroyed before `solve` reads it: refused at compile time.
