@@ -6,6 +6,7 @@
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
 
+#include <cmath>
 #include <numeric>
 
 using namespace solver_test;
@@ -96,6 +97,33 @@ TEST_CASE("part: boxes stream to the sink; at most in_flight facets exist at onc
     CHECK(r.peak_in_flight <= 3);  // ... but never more than three facets' worth at once
 }
 
+TEST_CASE("part: the progress estimate weighs each facet by its search box, and ends at zero") {
+    // part_progress::seconds_left = elapsed × (work left / work done), each facet's work its
+    // contracted search box volume (part_solver::work_estimate); a facet no position can
+    // inspect counts as little. With two equal halves done, the estimate is the elapsed time.
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    for (std::size_t f : {std::size_t{0}, part().facet_of_interest}) CHECK(whole.work_estimate(f) > 0.0);
+    const std::vector<std::size_t> two{part().facet_of_interest, part().facet_of_interest};
+    const detail::work_meter meter(whole, two);
+    CHECK(meter.seconds_left(1, 3.0) == doctest::Approx(3.0));
+    CHECK(meter.seconds_left(2, 3.0) == 0.0);
+    CHECK(meter.seconds_left(0, 3.0) == 0.0);
+    auto o = options_for(every(97, part().mesh.num_faces(), 0), 2);
+    double last = -1.0;
+    std::size_t calls = 0;
+    o.progress = [&](const part_progress& p) {
+        CHECK(std::isfinite(p.seconds_left));
+        CHECK(p.seconds_left >= 0.0);
+        last = p.seconds_left;
+        ++calls;
+        return true;
+    };
+    collecting_sink<boost_interval> sink;
+    const auto r = whole.solve(o, sink);
+    CHECK(calls == r.facets.size());
+    CHECK(last == 0.0);
+}
+
 TEST_CASE("part: cancellation returns exactly the finished facets, as the full run has them") {
     const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
     const auto facets = every(41, part().mesh.num_faces(), 3);
@@ -106,6 +134,8 @@ TEST_CASE("part: cancellation returns exactly the finished facets, as the full r
     o.progress = [](const part_progress& p) {
         CHECK(p.facets_total > 0);
         CHECK(p.seconds >= 0.0);
+        CHECK(std::isfinite(p.seconds_left));
+        CHECK(p.seconds_left >= 0.0);
         return p.facets_done < 5;
     };
     const auto cut = whole.solve(o, cut_sink);

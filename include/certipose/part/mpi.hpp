@@ -186,6 +186,9 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     out.facets_selected = selection.size();
     const auto start = clock::now();
 
+    detail::work_meter meter;  // rank 0's progress estimate (part_progress::seconds_left)
+    if (rank == 0 && options.progress) meter = detail::work_meter(part, selection);
+
     if (rank != 0) {  // ---- a worker: ask, solve, send, until told to stop ---------------------
         out.facets_selected = 0;
         for (;;) {
@@ -258,8 +261,7 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
                 if (options.progress) {
                     const double s = std::chrono::duration<double>(clock::now() - start).count();
                     const std::size_t done = out.facets.size();
-                    const part_progress p{done, selection.size(), out.valid, out.boundary, s,
-                                          s / static_cast<double>(done) * static_cast<double>(selection.size() - done)};
+                    const part_progress p{done, selection.size(), out.valid, out.boundary, s, meter.seconds_left(done, s)};
                     if (!options.progress(p)) stopping = true, why = termination::cancelled;
                 }
             }
