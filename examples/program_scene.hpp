@@ -96,7 +96,7 @@ decltype(auto) naming_occluders(const scene_arguments& args, Build&& build) {
 }
 
 /// What a triangle-soup survey found, in one line: "6 bodies (6 closed), 2272 intersecting
-/// face pairs, 40 buried facets" (empty for a clean mesh).
+/// face pairs, 836 buried facets" (the bodies always; each kind of defect when there is one).
 inline std::string survey_text(const certipose::mesh_survey& s) {
     std::string out = std::to_string(s.bodies) + (s.bodies == 1 ? " body" : " bodies") + " (" +
                       std::to_string(s.closed_bodies) + " closed)";

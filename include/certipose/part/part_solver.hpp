@@ -168,7 +168,6 @@ struct tee_sink {
     }
 };
 
-/// Every facet of a part (see the header comment). The mesh must outlive the solver.
 namespace detail {
 
 /// The progress estimate of a run (part_progress::seconds_left): each selected facet's share
@@ -196,6 +195,7 @@ struct work_meter {
 
 }  // namespace detail
 
+/// Every facet of a part (see the header comment). The mesh must outlive the solver.
 template <class Policies = default_policies>
 class part_solver {
 public:
