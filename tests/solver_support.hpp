@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 #include <set>
 #include <span>
@@ -56,6 +57,17 @@ verify::camera_view view_of(const Camera& camera, distance_range range) {
         v.margin_px = camera.margin_px();
     }
     return v;
+}
+
+/// The 8 corners of a position box (bit k of the index picks the upper bound on axis k).
+template <class Box>
+std::array<Eigen::Vector3d, 8> position_corners(const Box& position) {
+    std::array<Eigen::Vector3d, 8> out;
+    for (int k = 0; k < 8; ++k)
+        out[static_cast<std::size_t>(k)] = {k & 1 ? upper(position[0]) : lower(position[0]),
+                                            k & 2 ? upper(position[1]) : lower(position[1]),
+                                            k & 4 ? upper(position[2]) : lower(position[2])};
+    return out;
 }
 
 /// 8 random barycentric points (sight-line targets beside the vertices, edge midpoints, centroid).

@@ -101,11 +101,8 @@ TEST_CASE("a dirty mesh read as a triangle soup, sanitized: the survey, skipped 
             checked += rep.valid_boxes;
             for (const auto& cb : r.boxes)
                 if (cb.cls == box_class::valid)
-                    for (int k = 0; k < 8; ++k)
-                        CHECK_FALSE(dirty_test::inside_closed_body(
-                            {k & 1 ? upper(cb.box.position[0]) : lower(cb.box.position[0]),
-                             k & 2 ? upper(cb.box.position[1]) : lower(cb.box.position[1]),
-                             k & 4 ? upper(cb.box.position[2]) : lower(cb.box.position[2])}));
+                    for (const Eigen::Vector3d& c : position_corners(cb.box.position))
+                        CHECK_FALSE(dirty_test::inside_closed_body(c));
         }
     MESSAGE("dirty mesh, sanitized: " << checked << " VALID boxes checked");
 }

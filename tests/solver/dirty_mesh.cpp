@@ -177,12 +177,7 @@ TEST_CASE("dirty meshes: every VALID box holds with sight lines cast against the
             CHECK(rep.violations == 0);
             for (const auto& cb : r.boxes) {
                 if (cb.cls != box_class::valid) continue;
-                for (int k = 0; k < 8; ++k) {
-                    const Eigen::Vector3d c(k & 1 ? upper(cb.box.position[0]) : lower(cb.box.position[0]),
-                                            k & 2 ? upper(cb.box.position[1]) : lower(cb.box.position[1]),
-                                            k & 4 ? upper(cb.box.position[2]) : lower(cb.box.position[2]));
-                    in_material += inside_closed_body(c);
-                }
+                for (const Eigen::Vector3d& c : position_corners(cb.box.position)) in_material += inside_closed_body(c);
             }
         }
     MESSAGE("dirty mesh: " << facets.size() << " facets x " << modes.size() << " modes, " << valid

@@ -85,11 +85,8 @@ TEST_CASE("a box budget keeps the VALID boxes certified before it: the full run'
     std::size_t points = 0, outside = 0;
     for (const auto& cb : small.boxes) {
         if (cb.cls != box_class::valid) continue;
-        std::vector<Eigen::Vector3d> probes;
-        for (int k = 0; k < 8; ++k)
-            probes.emplace_back(k & 1 ? upper(cb.box.position[0]) : lower(cb.box.position[0]),
-                                k & 2 ? upper(cb.box.position[1]) : lower(cb.box.position[1]),
-                                k & 4 ? upper(cb.box.position[2]) : lower(cb.box.position[2]));
+        const auto corners = position_corners(cb.box.position);
+        std::vector<Eigen::Vector3d> probes(corners.begin(), corners.end());
         for (int k = 0; k < 4; ++k) {
             Eigen::Vector3d p;
             for (int d = 0; d < 3; ++d)

@@ -79,12 +79,7 @@ TEST_CASE("a user constraint set takes run-time parameters: a keep-in sphere") {
         // Every corner of every VALID box is within reach, and sampled poses satisfy the rest.
         for (const auto& b : r.boxes) {
             if (b.cls != box_class::valid) continue;
-            for (int k = 0; k < 8; ++k) {
-                const Eigen::Vector3d corner(k & 1 ? upper(b.box.position[0]) : lower(b.box.position[0]),
-                                             k & 2 ? upper(b.box.position[1]) : lower(b.box.position[1]),
-                                             k & 4 ? upper(b.box.position[2]) : lower(b.box.position[2]));
-                CHECK((corner - base).norm() <= radius);
-            }
+            for (const Eigen::Vector3d& corner : position_corners(b.box.position)) CHECK((corner - base).norm() <= radius);
         }
         const auto rep = check_valid_boxes(r, part().mesh, camera, solver.range(), task.min_view_angle, 20, 21);
         CHECK(rep.violations == 0);

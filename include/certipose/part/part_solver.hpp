@@ -226,6 +226,14 @@ public:
     part_result solve(const part_options& options, Sink& sink) const;
 
 private:
+    /// Facet `f`'s search box contracted by constraints 1–4 (empty: no position satisfies them):
+    /// what `uninspectable` proves on and `work_estimate` measures.
+    position_box<interval_type> search_box(std::size_t f) const {
+        auto set = make_constraint_set<typename solver_type::constraint_set_type>(
+            position_problem{solver_.part().facet(f), solver_.range(), solver_.task()}, solver_.constraints());
+        return set.initial_box();
+    }
+
     solver_type solver_;
 };
 
@@ -258,9 +266,7 @@ std::optional<std::string> part_solver<Policies>::uninspectable(std::size_t inde
         }
     }
     // 2. No position satisfies constraints 1–4: the set contracts its search box to nothing.
-    auto set = make_constraint_set<typename solver_type::constraint_set_type>(
-        position_problem{f, range, solver_.task()}, solver_.constraints());
-    const position_box<I> box = set.initial_box();
+    const position_box<I> box = search_box(index);
     if (is_empty(box)) return "no position satisfies the distance, backface and viewing-angle constraints";
     // 3. The occlusion policy proves every sight line from the whole search box blocked.
     if (checks_occlusion<typename solver_type::occlusion_type> &&
@@ -275,9 +281,7 @@ double part_solver<Policies>::work_estimate(std::size_t index) const {
                       { o.hidden(index) } -> std::same_as<std::optional<std::string>>;
                   })
         if (solver_.occlusion().hidden(index)) return 0.0;
-    auto set = make_constraint_set<typename solver_type::constraint_set_type>(
-        position_problem{solver_.part().facet(index), solver_.range(), solver_.task()}, solver_.constraints());
-    const position_box<interval_type> box = set.initial_box();
+    const position_box<interval_type> box = search_box(index);
     if (is_empty(box)) return 0.0;
     double v = 1.0;
     for (std::size_t d = 0; d < 3; ++d) v *= upper(box[d]) - lower(box[d]);
