@@ -3,7 +3,7 @@
 //   certipose-plan --mesh PART --camera CAMERA [--scale S]
 //                  (--part-results DIR | --position-eps E --orientation-eps O [--facets LIST])
 //                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
-//                  [--exact SECONDS]
+//                  [--exact SECONDS] [--lp-seconds SECONDS]
 //                  [--threads N] [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
 //                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--working-distance DMIN,DMAX --min-view-angle RAD]
 //                  --out PLAN.json [--ply PLAN.ply] [--quiet]
@@ -17,8 +17,9 @@
 // installation tolerance around their centres (--tolerance, default ±5 mm, ±0.02 rad). For each the
 // certified facet set C(B) is computed (coverage/inspection.hpp); the plan is greedy maximum
 // coverage (coverage/deployment.hpp), optionally replaced by GLPK's exact answer when it proves
-// one with fewer cameras within --exact SECONDS, and always comes with a lower bound (the larger
-// of the area bound and the LP relaxation's). Facets no chosen camera certifies are listed with
+// one with fewer cameras within --exact SECONDS, and always comes with a lower bound (the largest
+// of the area bound, the greedy bound and the LP relaxation's, if GLPK solves it within
+// --lp-seconds, default 60). Facets no chosen camera certifies are listed with
 // the reason. PLAN.json and the PLY are committed together; SIGINT/SIGTERM stop the run, leave no
 // file and exit 130/143. Errors: one line "certipose-plan: ..." on stderr, exit 1 (bad input,
 // write error) or 2 (bad command line).
@@ -67,6 +68,7 @@ struct arguments {
     fs::path mesh, camera, part_results, out, ply;
     double scale = 1.0;
     std::optional<double> position_eps, orientation_eps, coverage, exact;
+    double lp_seconds = 60;
     std::optional<std::size_t> cameras;
     std::string facets;
     std::size_t per_facet = 1, threads = 0;
@@ -79,7 +81,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     CLI::App app{"certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (docs/coverage.md).",
                  "certipose-plan"};
     std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
-        exact, threads, facets, tolerance;
+        exact, lp_seconds, threads, facets, tolerance;
     bool quiet = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
@@ -96,6 +98,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "for whole boxes (default 0.005,0.02)")
         ->type_name("P,O");
     app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
+    app.add_option("--lp-seconds", lp_seconds, "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")->type_name("SECONDS");
     app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
     app.add_option("--out", out, "the plan")->type_name("PLAN.json")->required();
     app.add_option("--ply", ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
@@ -132,6 +135,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                 parse_double("--tolerance", tolerance.substr(comma + 1), "a positive finite number of radians")};
         }
         if (!exact.empty()) a.exact = parse_double("--exact", exact, "a positive finite number of seconds");
+        if (!lp_seconds.empty()) a.lp_seconds = parse_double("--lp-seconds", lp_seconds, "a positive finite number of seconds");
         if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
         a.scene = parse_scene_options(scene, a.camera);
         check_output("--out", a.out);
@@ -356,6 +360,7 @@ int run(const arguments& args, const interruption& signals) {
     certipose::inspection_options iopt;
     iopt.threads = args.threads;
     iopt.stop = signals.token();
+    iopt.possible_sets = false;  // the plan needs C(B) only
     if (progress)
         iopt.progress = [](std::size_t done, std::size_t all) {
             std::fprintf(stderr, "\r\033[Kcertipose-plan: certified facet sets of %zu / %zu candidate boxes", done, all);
@@ -383,8 +388,14 @@ int run(const arguments& args, const interruption& signals) {
     doc.max_cameras = args.cameras;
     doc.target_coverage = args.cameras ? args.coverage : std::optional<double>(args.coverage.value_or(0.95));
     certipose::deployment_plan plan = certipose::plan_greedy(sets, areas, dopt);
-    std::string method = "area";
-    const std::size_t lp = certipose::lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9));
+    std::string method =
+        plan.lower_bound > certipose::area_lower_bound(sets, areas, plan.certified_area) ? "greedy" : "area";
+    const auto lp_limit = std::chrono::milliseconds(static_cast<long long>(std::min(args.lp_seconds, 1e6) * 1000));
+    if (progress)
+        std::fprintf(stderr, "\r\033[Kcertipose-plan: %zu cameras chosen; GLPK's LP lower bound (up to %g s)...",
+                     plan.chosen.size(), args.lp_seconds);
+    const std::size_t lp = certipose::lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9), lp_limit);
+    if (progress) std::fputs("\r\033[K", stderr);
     if (lp > plan.lower_bound) plan.lower_bound = lp, method = "lp";
     bool exact = false;
     if (args.exact && plan.chosen.size() > plan.lower_bound) {

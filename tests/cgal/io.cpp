@@ -189,6 +189,10 @@ TEST_CASE("docs/errors.md lists every error with its type and exact message") {
              certipose::aabb_occlusion occ(certipose::triangle_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{{0, 1, 2}}}));
          }},
         {"facet out of range", [&] { (void)tetrahedron().facet(9); }},
+        {"non-finite sight-line start", [&] {
+             const certipose::aabb_occlusion occ(tetrahedron());
+             (void)occ.sight_line_blocked({std::numeric_limits<double>::quiet_NaN(), 0, 0}, 0);
+         }},
         {"camera field out of range", [&] { (void)thin_lens(-0.012); }},
         {"camera file missing", [&] { certipose::read_camera_task(dir / "missing.json"); }},
         {"camera JSON syntax", [&] { certipose::parse_camera_task("{\"camera\": {", "camera.json"); }},

@@ -64,6 +64,8 @@ struct doctest::StringMaker<certipose::visibility> {
 
 static_assert(OcclusionPolicy<no_occlusion, boost_interval>);
 static_assert(OcclusionPolicy<aabb_occlusion, boost_interval>);
+static_assert(RefutingOcclusionPolicy<aabb_occlusion>);
+static_assert(!RefutingOcclusionPolicy<no_occlusion>);
 static_assert(OcclusionPolicy<aabb_occlusion, cgal_interval>);
 static_assert(OcclusionPolicy<boolean_occlusion, boost_interval>);
 static_assert(OcclusionPolicy<boolean_occlusion, cgal_interval>);
@@ -547,6 +549,47 @@ TEST_CASE("occluders: a slab that hides the facet, one that hides part of it, on
     CHECK(run(cuboid(V(1, 0, 0), V(2, 1, 1))) == std::pair{visibility::visible, visibility::visible});
     // A block that touches the top face's plane along the facet's far edge, outside the hull.
     CHECK(run(cuboid(V(1, -1, 1), V(2, 2, 1.5))).first == visibility::visible);
+}
+
+TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, and it never refutes a VISIBLE box") {
+    const triangle_mesh cube = cuboid(V(0, 0, 0), V(1, 1, 1));
+    const std::size_t top = face_with(cube, V(0, 0, 1), V(1, 0, 1), V(1, 1, 1));
+    const std::vector<triangle_mesh> slab{cuboid(V(-5, -5, 2), V(5, 5, 2.1))};
+    const aabb_occlusion open_sky(cube), covered(cube, slab);
+    const V above(0.5, 0.5, 3);
+    CHECK(!open_sky.sight_line_blocked(above, top));
+    CHECK(covered.sight_line_blocked(above, top));
+    CHECK(!covered.sight_line_blocked(V(0.5, 0.5, 1.5), top));  // under the slab
+    // From below the cube the line runs through the bottom face: blocked.
+    CHECK(open_sky.sight_line_blocked(V(0.5, 0.5, -1), top));
+    CHECK_THROWS_AS(open_sky.sight_line_blocked(above, 12), out_of_range);
+    try {
+        open_sky.sight_line_blocked(V(0, std::numeric_limits<double>::quiet_NaN(), 3), top);
+        FAIL("no throw");
+    } catch (const invalid_argument& e) {
+        CHECK(e.field() == "point");
+    }
+    // On the sample part: whenever the centre's line is blocked, no box holding the centre is
+    // VISIBLE (the refutation only ever spares a proof that would fail).
+    const auto part = make_sample_part();
+    const aabb_occlusion fast(part.mesh);
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> U(-0.6, 0.6), H(0.005, 0.05);
+    std::uniform_int_distribution<std::size_t> F(0, part.mesh.num_faces() - 1);
+    int blocked = 0, visible = 0;
+    for (int i = 0; i < (debug_build ? 300 : 3000); ++i) {
+        const V c(U(rng), U(rng), std::abs(U(rng)) + 0.05);
+        const double h = H(rng);
+        const box3 b(c - V(h, h, h), c + V(h, h, h));
+        const std::size_t f = F(rng);
+        const bool refuted = fast.sight_line_blocked(b.center(), f);
+        const visibility v = fast.classify(b, f, occlusion_effort::visible_only);
+        CAPTURE(i);
+        if (refuted) CHECK(v != visibility::visible);
+        blocked += refuted, visible += v == visibility::visible;
+    }
+    CHECK(blocked > 0);
+    CHECK(visible > 0);
 }
 
 TEST_CASE("the sample part's facet of interest behind its boss: a wall touching the facet") {

@@ -101,6 +101,37 @@ TEST_CASE("a coverage target: greedy stops once the share of the coverable area 
     }
 }
 
+TEST_CASE("the greedy bound never exceeds the fewest boxes certifying a target (brute force)") {
+    std::mt19937 rng(19);
+    std::size_t above_area_bound = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+        const instance in = random_instance(rng, 10, 14);
+        for (const double share : {0.5, 0.8, 0.95, 1.0}) {
+            deployment_options o;
+            o.coverage = share;
+            const deployment_plan p = plan_greedy(in.candidates, in.areas, o);
+            // Targets at and between the curve's points.
+            for (std::size_t k = 0; k < p.curve.size(); ++k)
+                for (const double t : {p.curve[k], k > 0 ? 0.5 * (p.curve[k - 1] + p.curve[k]) : 0.5 * p.curve[k]}) {
+                    std::size_t fewest = in.candidates.size() + 1;
+                    for (unsigned m = 0; m < (1U << in.candidates.size()); ++m)
+                        if (covered(in, m) >= t * (1 - 1e-12))
+                            fewest = std::min<std::size_t>(fewest, static_cast<std::size_t>(__builtin_popcount(m)));
+                    const std::size_t bound = greedy_lower_bound(p.curve, t);
+                    CAPTURE(trial);
+                    CAPTURE(t);
+                    CHECK(bound >= 1);
+                    CHECK(bound <= fewest);
+                    above_area_bound += bound > area_lower_bound(in.candidates, in.areas, t);
+                }
+            CHECK(p.lower_bound >= greedy_lower_bound(p.curve, p.certified_area));
+        }
+    }
+    CHECK(above_area_bound > 0);  // it adds something to the area bound
+    CHECK(greedy_lower_bound({}, 0.0) == 0);
+    CHECK(greedy_lower_bound({1.0, 2.0}, 5.0) == 2);  // out of the curve's reach: at least its length
+}
+
 TEST_CASE("deployment input errors name the value") {
     const std::vector<double> areas{1.0, 2.0};
     const std::vector<deployment_candidate> good{{{0}}, {{1}}};

@@ -42,10 +42,45 @@ TEST_CASE("GLPK: the LP bound is a lower bound and the exact plan is optimal (br
     }
 }
 
+TEST_CASE("GLPK: facets certified by the same candidates count as one, with the same bound and plan") {
+    // Each facet of a random instance split into three with the same candidates: the program
+    // merges them back (glpk_deployment.hpp), so the answers must equal the unsplit instance's.
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> area(0.1, 1.0), share(0.1, 0.8);
+    std::bernoulli_distribution take(0.35);
+    for (int trial = 0; trial < 15; ++trial) {
+        std::vector<double> areas, split;
+        for (int f = 0; f < 10; ++f) {
+            areas.push_back(area(rng));
+            const double a = share(rng), b = share(rng) * (1 - a);
+            split.insert(split.end(), {areas.back() * a, areas.back() * b, areas.back() * (1 - a - b)});
+        }
+        std::vector<deployment_candidate> whole(8), parts(8);
+        for (std::size_t j = 0; j < whole.size(); ++j)
+            for (std::size_t f = 0; f < areas.size(); ++f)
+                if (take(rng)) {
+                    whole[j].facets.push_back(f);
+                    parts[j].facets.insert(parts[j].facets.end(), {3 * f, 3 * f + 1, 3 * f + 2});
+                }
+        const double target = 0.85 * union_area(whole, areas);
+        CAPTURE(trial);
+        CHECK(lp_lower_bound(parts, split, target) == lp_lower_bound(whole, areas, target));
+        const auto a = plan_exact(whole, areas, target, std::chrono::milliseconds(10000));
+        const auto b = plan_exact(parts, split, target, std::chrono::milliseconds(10000));
+        REQUIRE(a.has_value());
+        REQUIRE(b.has_value());
+        CHECK(a->size() == b->size());
+    }
+}
+
 TEST_CASE("GLPK: malformed or missing candidates are errors or empty answers, never an abort") {
     const std::vector<double> areas{1.0, 2.0};
     CHECK_THROWS_AS(lp_lower_bound({{{1, 1}}}, areas, 1.0), invalid_argument);
     CHECK_THROWS_AS(plan_exact({{{0, 7}}}, areas, 1.0, std::chrono::milliseconds(100)), out_of_range);
     CHECK(lp_lower_bound({}, areas, 1.0) == 0);  // nothing to bound with: nothing claimed
+    // A time limit that is ample changes nothing.
+    const std::vector<deployment_candidate> two{{{0}}, {{1}}};
+    CHECK(lp_lower_bound(two, areas, 3.0) == 2);
+    CHECK(lp_lower_bound(two, areas, 3.0, std::chrono::milliseconds(10000)) == 2);
     CHECK(!plan_exact({}, areas, 1.0, std::chrono::milliseconds(100)).has_value());
 }

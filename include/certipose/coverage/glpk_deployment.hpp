@@ -6,10 +6,12 @@
 //   minimise Σ_j x_j   over candidates j (x_j ∈ {0, 1}; in [0, 1] for the relaxation)
 //   s.t.     Σ_i a_i y_i ≥ target           (y_i ∈ [0, 1]: facet i counts as certified)
 //            y_i ≤ Σ_{j : i ∈ C(B_j)} x_j    (only if a chosen box certifies it)
+// where facets certified by the same candidates share one y (weighted by their summed area).
 #pragma once
 
 #include <glpk.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -35,32 +37,45 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
     glp_term_out(GLP_OFF);
     std::unique_ptr<glp_prob, glp_deleter> lp(glp_create_prob());
     glp_set_obj_dir(lp.get(), GLP_MIN);
-    // Facets some candidate certifies get a y column and a row.
-    std::vector<int> row_of(areas.size(), 0);
-    int rows = 1;
-    for (const auto& c : candidates)
-        for (std::size_t f : c.facets)
-            if (row_of[f] == 0) row_of[f] = ++rows;
-    const int n = static_cast<int>(candidates.size()), facets = rows - 1;
+    // Facets certified by the same candidates are interchangeable here: one y column and row per
+    // such class, weighted by the class's area, has the same optimum (the area-weighted mean of
+    // a solution's y over a class is feasible for the class's y, and back) with far fewer rows,
+    // as the neighbouring facets of a finely tessellated surface are mostly certified by the
+    // same boxes.
+    std::vector<std::vector<int>> by_facet(areas.size());  // the columns certifying each facet
+    for (std::size_t j = 0; j < candidates.size(); ++j)
+        for (std::size_t f : candidates[j].facets) by_facet[f].push_back(static_cast<int>(j) + 1);
+    std::vector<std::size_t> order;
+    for (std::size_t f = 0; f < areas.size(); ++f)
+        if (!by_facet[f].empty()) order.push_back(f);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return by_facet[a] < by_facet[b]; });
+    std::vector<const std::vector<int>*> class_columns;
+    std::vector<double> class_area;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        if (k == 0 || by_facet[order[k]] != by_facet[order[k - 1]]) {
+            class_columns.push_back(&by_facet[order[k]]);
+            class_area.push_back(0.0);
+        }
+        class_area.back() += areas[order[k]];
+    }
+    const int n = static_cast<int>(candidates.size()), classes = static_cast<int>(class_columns.size());
+    const int rows = 1 + classes;
     glp_add_rows(lp.get(), rows);
-    glp_add_cols(lp.get(), n + facets);
+    glp_add_cols(lp.get(), n + classes);
     glp_set_row_bnds(lp.get(), 1, GLP_LO, target, 0.0);
     for (int r = 2; r <= rows; ++r) glp_set_row_bnds(lp.get(), r, GLP_UP, 0.0, 0.0);
-    for (int j = 1; j <= n + facets; ++j) {
+    for (int j = 1; j <= n + classes; ++j) {
         glp_set_col_bnds(lp.get(), j, GLP_DB, 0.0, 1.0);
         glp_set_obj_coef(lp.get(), j, j <= n ? 1.0 : 0.0);
     }
     std::vector<int> ia{0}, ja{0};
     std::vector<double> ar{0.0};
-    for (std::size_t f = 0; f < areas.size(); ++f)
-        if (row_of[f]) {
-            const int y = n + row_of[f] - 1;
-            ia.push_back(1), ja.push_back(y), ar.push_back(areas[f]);   // Σ a_i y_i ≥ target
-            ia.push_back(row_of[f]), ja.push_back(y), ar.push_back(1.0);  // y_i − Σ x_j ≤ 0
-        }
-    for (int j = 0; j < n; ++j)
-        for (std::size_t f : candidates[static_cast<std::size_t>(j)].facets)
-            ia.push_back(row_of[f]), ja.push_back(j + 1), ar.push_back(-1.0);
+    for (int c = 0; c < classes; ++c) {
+        const int y = n + c + 1, row = c + 2;
+        ia.push_back(1), ja.push_back(y), ar.push_back(class_area[static_cast<std::size_t>(c)]);  // Σ a y ≥ target
+        ia.push_back(row), ja.push_back(y), ar.push_back(1.0);                                     // y − Σ x_j ≤ 0
+        for (int j : *class_columns[static_cast<std::size_t>(c)]) ia.push_back(row), ja.push_back(j), ar.push_back(-1.0);
+    }
     glp_load_matrix(lp.get(), static_cast<int>(ia.size()) - 1, ia.data(), ja.data(), ar.data());
     return lp;
 }
@@ -68,9 +83,10 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
 }  // namespace detail
 
 /// ⌈optimum of the LP relaxation⌉: no plan certifies `target` m² with fewer boxes. 0 when the
-/// LP could not be solved (then nothing is claimed).
+/// LP could not be solved, or not within `time_limit` (then nothing is claimed): on a
+/// 10^5-facet part with 10^4 candidates the simplex may take many minutes.
 inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
-                                  double target) {
+                                  double target, std::optional<std::chrono::milliseconds> time_limit = std::nullopt) {
     if (!(target > 0) || candidates.empty()) {
         detail::check_candidates(candidates, areas.size());
         return 0;
@@ -80,6 +96,7 @@ inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candi
     glp_init_smcp(&parm);
     parm.msg_lev = GLP_MSG_OFF;
     parm.presolve = GLP_ON;
+    if (time_limit) parm.tm_lim = static_cast<int>(std::clamp<long long>(time_limit->count(), 1, 1 << 30));
     if (glp_simplex(lp.get(), &parm) != 0 || glp_get_status(lp.get()) != GLP_OPT) return 0;
     // A little below the optimum before rounding up: the simplex's own tolerance must not add a box.
     return static_cast<std::size_t>(std::ceil(glp_get_obj_val(lp.get()) - 1e-6));

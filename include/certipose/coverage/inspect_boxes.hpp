@@ -30,6 +30,8 @@ struct inspection_options {
     /// Called now and then with (boxes done, boxes in all), from whichever worker thread finished
     /// a batch, one call at a time (so it needs no lock of its own); false stops the run.
     std::function<bool(std::size_t, std::size_t)> progress{};
+    /// List the facets of P(B) too (facet_inspector::inspect); false keeps only C(B) and the areas.
+    bool possible_sets = true;
 };
 
 struct inspection_run {
@@ -60,7 +62,7 @@ inspection_run inspect_boxes(const pose_solver<Policies>& solver,
                     halted = true;
                     return;
                 }
-                out.coverage[i] = inspector.inspect(boxes[i]);
+                out.coverage[i] = inspector.inspect(boxes[i], options.possible_sets);
             }
             const std::size_t n = done.fetch_add(range.size()) + range.size();
             // One caller at a time is enough for a progress line; the others skip it.
@@ -75,6 +77,7 @@ inspection_run inspect_boxes(const pose_solver<Policies>& solver,
         const auto& s = inspector.stats();
         out.stats.boxes += s.boxes, out.stats.culled += s.culled, out.stats.by_constraints += s.by_constraints;
         out.stats.by_field_of_view += s.by_field_of_view, out.stats.occlusion_tests += s.occlusion_tests;
+        out.stats.refuted_by_sight_line += s.refuted_by_sight_line;
     }
     return out;
 }

@@ -103,6 +103,12 @@ public:
     /// Throws out_of_range("facet") / out_of_range("triangle").
     occlusion_shadow shadow(std::size_t facet, std::size_t triangle) const;
 
+    /// RefutingOcclusionPolicy: whether the segment from `from` to facet `facet`'s centroid
+    /// (rounded to doubles) may meet another scene triangle, or the survey proved the facet
+    /// hidden. True refutes VISIBLE for every box holding `from`. Throws out_of_range("facet"),
+    /// invalid_argument("point") for a non-finite point.
+    bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const;
+
     /// `blockers` gives up after this many possibly blocking triangles (a box that many
     /// triangles may block is bisected instead).
     static constexpr std::size_t max_blockers = 64;

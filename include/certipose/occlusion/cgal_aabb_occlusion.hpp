@@ -37,6 +37,7 @@
 
 #if CERTIPOSE_DETAIL_WITH_DEFINITIONS
 
+#include "certipose/detail/format.hpp"
 #include "certipose/error.hpp"
 #include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/interval/concept.hpp"
@@ -512,26 +513,31 @@ struct segment_hits_other {
     }
 };
 
-/// Is a sight line from the box to the facet free? Tries the box centre and two opposite corners
-/// against f's centroid rounded to doubles. Only a filter: `true` lets `classify` answer
-/// PARTIAL (we already know some sight line is blocked) without searching for an OCCLUDED
-/// certificate, which needs every sight line blocked and so cannot exist when one is free.
-/// Rounding the centroid may sway a grazing segment either way; neither way costs soundness:
-/// `true` only yields PARTIAL, which is never a wrong answer, and `false` only costs the search.
-inline bool some_sight_line_free(const aabb_scene& scene, std::size_t facet, const pt& lo, const pt& hi) {
+/// Does the segment from `c` to f's centroid rounded to doubles meet no scene triangle but f?
+/// (Rounding the centroid may sway a grazing segment either way: callers use the answer only
+/// as a filter, see below.)
+inline bool sight_line_free(const aabb_scene& scene, std::size_t facet, const epick::Point_3& c) {
     using P = epick::Point_3;
     const auto& f = scene.tris[facet].v;
     const P q((f[0][0] + f[1][0] + f[2][0]) / 3, (f[0][1] + f[1][1] + f[2][1]) / 3, (f[0][2] + f[1][2] + f[2][2]) / 3);
-    const auto free_from = [&](const P& c) {
-        const epick::Segment_3 seg(c, q);
-        segment_hits_other t{scene, facet, seg, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}};
-        scene.tree.traversal(seg, t);
-        return !t.hit;
-    };
-    if (free_from(P(lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2)))
+    const epick::Segment_3 seg(c, q);
+    segment_hits_other t{scene, facet, seg, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}};
+    scene.tree.traversal(seg, t);
+    return !t.hit;
+}
+
+/// Is a sight line from the box to the facet free? Tries the box centre and two opposite corners
+/// against f's centroid. Only a filter: `true` lets `classify` answer PARTIAL (we already know
+/// some sight line is blocked) without searching for an OCCLUDED certificate, which needs every
+/// sight line blocked and so cannot exist when one is free. Neither way of a grazing segment
+/// costs soundness: `true` only yields PARTIAL, which is never a wrong answer, and `false` only
+/// costs the search.
+inline bool some_sight_line_free(const aabb_scene& scene, std::size_t facet, const pt& lo, const pt& hi) {
+    using P = epick::Point_3;
+    if (sight_line_free(scene, facet, P(lo[0] + (hi[0] - lo[0]) / 2, lo[1] + (hi[1] - lo[1]) / 2, lo[2] + (hi[2] - lo[2]) / 2)))
         return true;
     for (int k : {0, 7})
-        if (free_from(P(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]))) return true;
+        if (sight_line_free(scene, facet, P(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]))) return true;
     return false;
 }
 
@@ -872,6 +878,18 @@ CERTIPOSE_DECL bool aabb_occlusion::blockers(const Eigen::AlignedBox3d& box, std
     blocker_walk walk{H, *scene_, facet, F.id, visit};
     scene_->tree.traversal(H, walk);
     return !walk.stopped;
+}
+
+CERTIPOSE_DECL bool aabb_occlusion::sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const {
+    using namespace detail::occ;
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    if (!from.allFinite())
+        throw invalid_argument("point", "aabb_occlusion: the sight line's start must be finite, got (" +
+                                            detail::format_double(from.x()) + ", " + detail::format_double(from.y()) +
+                                            ", " + detail::format_double(from.z()) + ")");
+    if (scene_->survey && material_in_front(scene_->survey->hidden[facet])) return true;
+    const detail::round_to_nearest_scope nearest;  // the error bounds of the orientations assume it
+    return !sight_line_free(*scene_, facet, epick::Point_3(from.x(), from.y(), from.z()));
 }
 
 CERTIPOSE_DECL occlusion_shadow aabb_occlusion::shadow(std::size_t facet, std::size_t triangle) const {
