@@ -466,6 +466,31 @@ TEST_CASE("the free-sight-line filter never calls a touching segment free") {
     CHECK(coplanar > 100);
 }
 
+TEST_CASE("the segment-box pruning never prunes a box the segment touches") {
+    // On a small grid segments often end on a box face, run along one or touch a corner: the
+    // plain-double slab test (grown by its margin) must keep every box CGAL's exact predicate
+    // says the segment meets, and still prune most of the others.
+    using EK = CGAL::Exact_predicates_exact_constructions_kernel;
+    std::mt19937_64 rng(29);
+    std::uniform_int_distribution<int> G(-3, 3);
+    const auto grid = [&] { return pt{G(rng) / 2.0, G(rng) / 2.0, G(rng) / 2.0}; };
+    int meets = 0, pruned = 0, misses = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const pt a = grid(), b = grid(), p = grid(), q = grid();
+        if (a == b) continue;
+        const CGAL::Bbox_3 box(std::min(p[0], q[0]), std::min(p[1], q[1]), std::min(p[2], q[2]), std::max(p[0], q[0]),
+                               std::max(p[1], q[1]), std::max(p[2], q[2]));
+        const bool exact = CGAL::do_intersect(EK::Segment_3(EK::Point_3(a[0], a[1], a[2]), EK::Point_3(b[0], b[1], b[2])),
+                                              EK::Iso_cuboid_3(box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()));
+        const bool may = detail::occ::segment_may_meet_box(a, b, box);
+        CAPTURE(i);
+        if (exact) CHECK(may);
+        meets += exact, misses += !exact, pruned += !exact && !may;
+    }
+    CHECK(meets > 1000);
+    CHECK(pruned > 0.9 * misses);
+}
+
 // ---- hand-made scenes --------------------------------------------------------------------------
 
 TEST_CASE("a cube: front, behind, edge-on and in-plane boxes") {
