@@ -370,8 +370,8 @@ int run(const arguments& args, const interruption& signals) {
     if (progress) std::fputs("\r\033[K", stderr);
     if (signals.interrupted() || !inspected.completed) return report_interrupted("certipose-plan", signals);
     const double seconds_inspection = since(t1);
-    std::vector<double> areas(mesh.num_faces());
-    for (std::size_t f = 0; f < mesh.num_faces(); ++f) areas[f] = mesh.facet(f).area;
+    // The inspector's areas: a duplicated face counts once (coverage/inspection.hpp).
+    const std::vector<double> areas = certipose::facet_inspector<policies>(solver).areas();
     std::vector<certipose::deployment_candidate> sets(candidates.size());
     for (std::size_t j = 0; j < candidates.size(); ++j) {
         sets[j].facets = inspected.coverage[j].certified;

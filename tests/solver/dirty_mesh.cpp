@@ -8,6 +8,8 @@
 #include "dirty_scene.hpp"
 #include "solver_support.hpp"
 
+#include <certipose/coverage/candidates.hpp>
+#include <certipose/coverage/inspection.hpp>
 #include <certipose/io/json.hpp>
 #include <certipose/occlusion/cgal_boolean_occlusion.hpp>
 #include <certipose/occlusion/cgal_mesh_survey.hpp>
@@ -142,6 +144,37 @@ TEST_CASE("dirty meshes: the part solver skips buried, covered and duplicate fac
     CHECK(r.facets[4].termination != facet_termination::skipped);
     CHECK(r.facets[4].valid > 0);
     CHECK(r.skipped == 4);
+}
+
+TEST_CASE("dirty meshes: a duplicated face counts no area in C(B), so a plan counts that surface once") {
+    const dirty_scene& s = scene();
+    const pose_solver<> solver(mesh(), camera(), inspection_task{.min_view_angle = 0.35},
+                               pose_solver<>::setup{.semantics = mesh_semantics::soup});
+    facet_inspector<> inspector(solver);
+    REQUIRE(inspector.areas().size() == mesh().num_faces());
+    for (std::size_t k = 0; k < 12; ++k) {
+        CHECK(inspector.areas()[s.doubled + k] == mesh().facet(s.doubled + k).area);
+        CHECK(inspector.areas()[s.doubled_copy + k] == 0.0);
+    }
+    // Above the doubled shell, looking down on its top: the original and its copy are both
+    // certified (seen alike), their area once.
+    const std::size_t top = s.doubled + 2, copy = s.doubled_copy + 2;
+    const auto r = solver.solve(top, {.position_eps = 0.1, .orientation_eps = 0.38});
+    std::size_t both = 0;
+    for (const auto& b : r.boxes) {
+        if (b.cls != box_class::valid) continue;
+        // Cut to an installation tolerance, as a plan's candidates are (they certify more).
+        const facet_coverage c = inspector.inspect(around_centre(b.box, {0.005, 0.005, 0.005, 0.02, 0.02, 0.02}));
+        const bool has_top = std::binary_search(c.certified.begin(), c.certified.end(), top);
+        const bool has_copy = std::binary_search(c.certified.begin(), c.certified.end(), copy);
+        CHECK(has_top == has_copy);
+        double area = 0;
+        for (std::size_t f : c.certified)  // the copied shell's faces count nothing
+            area += f >= s.doubled_copy && f < s.doubled_copy + 12 ? 0.0 : mesh().facet(f).area;
+        CHECK(c.certified_area == doctest::Approx(area));
+        both += has_top && has_copy;
+    }
+    CHECK(both > 0);
 }
 
 TEST_CASE("dirty meshes: every VALID box holds with sight lines cast against the whole soup, in every mode") {

@@ -20,6 +20,9 @@
 //     visibility with one sight line (RefutingOcclusionPolicy) is asked first whether the box's
 //     centre sees the facet's centroid: on a large part most facets in view of a box are hidden
 //     from it, and one segment query settles those at a fraction of the proof's cost.
+// A face the occlusion survey found to duplicate an earlier one (a repeated shell of a CAD
+// export, occlusion/mesh_survey.hpp) counts no area: it is seen as its original is, so every
+// box certifying one certifies both, and the part's area would hold that surface twice.
 // Steps 2–3 are the proofs `pose_solver::certify` uses, so a facet in C(B) is one the
 // single-facet solver would certify for the box. An inspector owns its constraint sets and a
 // cache of occlusion shadows, so it is not shared between threads: build one per thread.
@@ -39,6 +42,7 @@
 
 #include "certipose/constraints/concept.hpp"
 #include "certipose/occlusion/concept.hpp"
+#include "certipose/occlusion/mesh_survey.hpp"
 #include "certipose/orientation/certify.hpp"
 #include "certipose/pose/pose_box.hpp"
 #include "certipose/solver/detail/box_certifier.hpp"
@@ -68,15 +72,19 @@ public:
     using interval_type = typename solver_type::interval_type;
     using constraint_set_type = typename solver_type::constraint_set_type;
 
-    /// Prepares the facets' areas and bounding spheres (each facet's constraint set is built when a
-    /// box first needs it). `solver` must outlive the inspector.
+    /// Prepares the facets' areas (0 for a duplicate face, see the header comment) and bounding
+    /// spheres (each facet's constraint set is built when a box first needs it). `solver` must
+    /// outlive the inspector.
     explicit facet_inspector(const solver_type& solver) : solver_(&solver), frustum_(solver.camera()) {
         const triangle_mesh& m = solver.part();
+        const mesh_survey* survey = nullptr;
+        if constexpr (requires { solver.occlusion().survey(); }) survey = solver.occlusion().survey();
         sets_.resize(m.num_faces());
         areas_.reserve(m.num_faces());
         for (std::size_t f = 0; f < m.num_faces(); ++f) {
             const facet& fa = m.facet(f);
-            areas_.push_back(fa.area);
+            const bool duplicate = survey && f < survey->hidden.size() && survey->hidden[f] == hidden_facet::duplicate;
+            areas_.push_back(duplicate ? 0.0 : fa.area);
             double r = 0;
             for (const auto& v : fa.v) r = std::max(r, (v - fa.centroid).norm());
             radius_.push_back(r);
@@ -187,7 +195,7 @@ public:
                                                              options.max_certifications);
     }
 
-    /// Facet areas (m²), by facet index.
+    /// Facet areas (m²), by facet index; 0 for a duplicate face.
     const std::vector<double>& areas() const noexcept { return areas_; }
     const solver_type& solver() const noexcept { return *solver_; }
     const inspection_stats& stats() const noexcept { return stats_; }
