@@ -28,6 +28,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Intersections_3/Iso_cuboid_3_Segment_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
@@ -585,8 +586,10 @@ TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, 
     CHECK(!open_sky.sight_line_blocked(above, top));
     CHECK(covered.sight_line_blocked(above, top));
     CHECK(!covered.sight_line_blocked(V(0.5, 0.5, 1.5), top));  // under the slab
-    // From below the cube the line runs through the bottom face: blocked.
-    CHECK(open_sky.sight_line_blocked(V(0.5, 0.5, -1), top));
+    // A blocker beside the facet, in front of its plane, across the line from the side.
+    const std::vector<triangle_mesh> post{cuboid(V(0.3, 0.3, 1.2), V(0.7, 0.7, 1.4))};
+    CHECK(aabb_occlusion(cube, post).sight_line_blocked(V(0.5, 0.5, 3), top));
+    CHECK(!aabb_occlusion(cube, post).sight_line_blocked(V(5, 0.5, 1.1), top));
     CHECK_THROWS_AS(open_sky.sight_line_blocked(above, 12), out_of_range);
     try {
         open_sky.sight_line_blocked(V(0, std::numeric_limits<double>::quiet_NaN(), 3), top);
@@ -594,6 +597,14 @@ TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, 
     } catch (const invalid_argument& e) {
         CHECK(e.field() == "point");
     }
+    // A soup with the top face twice, and the centroid exactly in its plane ((1 + 1 + 1) / 3):
+    // the copy touches the line only at its end on the facet, which blocks nothing.
+    std::vector<face_indices> doubled = cube.faces();
+    doubled.push_back(cube.faces()[top]);
+    const aabb_occlusion soup(triangle_mesh(cube.vertices(), doubled), {}, mesh_semantics::soup);
+    CHECK(!soup.sight_line_blocked(above, top));
+    CHECK(!soup.sight_line_blocked(above, doubled.size() - 1));
+    CHECK(soup.classify(box3(above - V(0.1, 0.1, 0.1), above + V(0.1, 0.1, 0.1)), top) == visibility::visible);
     // On the sample part: whenever the centre's line is blocked, no box holding the centre is
     // VISIBLE (the refutation only ever spares a proof that would fail).
     const auto part = make_sample_part();

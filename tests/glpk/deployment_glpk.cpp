@@ -82,5 +82,21 @@ TEST_CASE("GLPK: malformed or missing candidates are errors or empty answers, ne
     const std::vector<deployment_candidate> two{{{0}}, {{1}}};
     CHECK(lp_lower_bound(two, areas, 3.0) == 2);
     CHECK(lp_lower_bound(two, areas, 3.0, std::chrono::milliseconds(10000)) == 2);
+    // A limit too short for a larger program: GLPK stops, and nothing is claimed, or it finished
+    // in time and the bound is the unlimited one; never anything else.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> a(0.1, 1.0);
+    std::bernoulli_distribution take(0.05);
+    std::vector<double> many(3000);
+    for (double& x : many) x = a(rng);
+    std::vector<deployment_candidate> cands(400);
+    for (auto& c : cands)
+        for (std::size_t f = 0; f < many.size(); ++f)
+            if (take(rng)) c.facets.push_back(f);
+    const double target = 0.9 * union_area(cands, many);
+    const std::size_t unlimited = lp_lower_bound(cands, many, target);
+    REQUIRE(unlimited > 0);
+    const std::size_t hurried = lp_lower_bound(cands, many, target, std::chrono::milliseconds(1));
+    CHECK((hurried == 0 || hurried == unlimited));
     CHECK(!plan_exact({}, areas, 1.0, std::chrono::milliseconds(100)).has_value());
 }

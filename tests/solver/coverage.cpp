@@ -287,6 +287,15 @@ TEST_CASE("a deployment plan on the sample part: every claim of every camera pas
     REQUIRE(run.completed);
     // The thread count does not change the answer.
     const inspection_run one = inspect_boxes(solver, boxes, {.threads = 1});
+    // Without P(B)'s lists: the same C(B) and areas, no possible list.
+    const inspection_run lean = inspect_boxes(solver, boxes, {.threads = 1, .possible_sets = false});
+    for (std::size_t j = 0; j < boxes.size(); ++j) {
+        CHECK(lean.coverage[j].certified == one.coverage[j].certified);
+        CHECK(lean.coverage[j].possible.empty());
+        CHECK(lean.coverage[j].possible_area == one.coverage[j].possible_area);
+    }
+    CHECK(lean.stats.occlusion_tests == one.stats.occlusion_tests);
+    CHECK(one.stats.refuted_by_sight_line <= one.stats.occlusion_tests);
     std::vector<deployment_candidate> sets;
     for (std::size_t j = 0; j < boxes.size(); ++j) {
         CHECK(run.coverage[j].certified == one.coverage[j].certified);

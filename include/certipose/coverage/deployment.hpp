@@ -106,8 +106,7 @@ inline std::size_t area_lower_bound(const std::vector<deployment_candidate>& can
 /// boxes certify more than curve[k−1] / (1 − (1 − 1/k)^k): the fewest k for which that reaches
 /// `target` is a lower bound on every plan. `curve` must be a greedy plan's (plan_greedy's
 /// `curve`, the area after each box); it needs no solver, where the LP bound may be out of
-/// reach for a 10^5-facet part. 0 for no target; at most curve.size() once the curve reaches
-/// the target.
+/// reach for a large part. 0 for no target; curve.size() at most.
 inline std::size_t greedy_lower_bound(const std::vector<double>& curve, double target) {
     if (!(target > 0)) return 0;
     for (std::size_t k = 1; k <= curve.size(); ++k) {
@@ -167,7 +166,9 @@ inline deployment_plan plan_greedy(const std::vector<deployment_candidate>& cand
 }
 
 /// The plan made of exactly `chosen` (e.g. an exact solver's answer): the same fields as
-/// plan_greedy's, with the chosen boxes in the order greedy would take them among themselves.
+/// plan_greedy's, with the chosen boxes in the order greedy would take them among themselves,
+/// but the area bound alone as `lower_bound` (a greedy curve over a subset bounds nothing for
+/// the whole candidate set).
 /// Throws out_of_range for an index beyond `candidates`.
 inline deployment_plan plan_of(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                const std::vector<std::size_t>& chosen) {

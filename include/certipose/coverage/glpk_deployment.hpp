@@ -83,8 +83,8 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
 }  // namespace detail
 
 /// ⌈optimum of the LP relaxation⌉: no plan certifies `target` m² with fewer boxes. 0 when the
-/// LP could not be solved, or not within `time_limit` (then nothing is claimed): on a
-/// 10^5-facet part with 10^4 candidates the simplex may take many minutes.
+/// LP could not be solved, or not within `time_limit` (then nothing is claimed): the simplex
+/// grows with the candidates and the facet classes, and a large part has many of both.
 inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
                                   double target, std::optional<std::chrono::milliseconds> time_limit = std::nullopt) {
     if (!(target > 0) || candidates.empty()) {

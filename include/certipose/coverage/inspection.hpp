@@ -103,9 +103,9 @@ public:
     explicit facet_inspector(const solver_type&& solver) = delete;
 
     /// C(B) and P(B) for the 6D box (see the header comment). With `list_possible` false the
-    /// facets of P(B) are not listed (its area is still summed): a plan keeps C(B) of 10^4
-    /// boxes, and their P(B) lists would take gigabytes. Throws invalid_argument("box") for an
-    /// empty or unbounded box.
+    /// facets of P(B) are not listed (its area is still summed): a plan keeps C(B) of every
+    /// candidate, and P(B) is many times larger on a big part. Throws invalid_argument("box")
+    /// for an empty or unbounded box.
     facet_coverage inspect(const pose_box<interval_type>& box, bool list_possible = true) {
         for (std::size_t k = 0; k < 3; ++k)
             if (is_empty(box.position[k]) || is_empty(box.orientation[k]) || !std::isfinite(lower(box.position[k])) ||

@@ -78,7 +78,7 @@ struct plan_document {
     struct coverage_record {
         double certified_area = 0, coverable_area = 0, total_area = 0;
         std::size_t lower_bound_cameras = 0;
-        std::string lower_bound_method;  ///< "area" or "lp"
+        std::string lower_bound_method;  ///< "area", "greedy", "lp" or "exact"
         std::vector<double> curve;       ///< certified area after 1, 2, ... cameras
         friend bool operator==(const coverage_record&, const coverage_record&) = default;
     };

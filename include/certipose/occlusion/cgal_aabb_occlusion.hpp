@@ -53,7 +53,6 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Intersections_3/Bbox_3_Segment_3.h>
 #include <CGAL/Intersections_3/Iso_cuboid_3_Triangle_3.h>
 
 #include <Eigen/Geometry>
@@ -494,9 +493,9 @@ inline bool segment_may_meet_triangle(const pt& a, const pt& b, const std::array
 /// Tree pruning for a segment: may the segment from a to b meet `box`? A slab test in plain
 /// doubles against the box grown by a margin (a billionth of the coordinates' magnitude) that
 /// dwarfs the rounding of the arithmetic, so a node the segment meets is never pruned; one it
-/// misses by less is only visited, and its triangles are decided exactly. CGAL's exact
-/// segment–box predicate gave the same pruning at several times the cost: its filter fails
-/// whenever an endpoint lies on a box face, which a centroid of an axis-aligned CAD face does.
+/// misses by less is only visited, and its triangles are decided exactly. (CGAL's exact
+/// segment–box predicate prunes a little more, but its filter fails whenever an endpoint lies on
+/// a box face, which the centroid of an axis-aligned CAD face does, and exact arithmetic follows.)
 inline bool segment_may_meet_box(const pt& a, const pt& b, const CGAL::Bbox_3& box) {
     double t0 = 0.0, t1 = 1.0;
     for (int k = 0; k < 3; ++k) {
@@ -515,12 +514,16 @@ inline bool segment_may_meet_box(const pt& a, const pt& b, const CGAL::Bbox_3& b
     return true;
 }
 
-/// Does the segment (a, b) possibly meet a scene triangle other than `facet`? (CGAL traversal
-/// traits over the scene tree.)
+/// Does the sight segment from a (in front of the facet) to b (on it) possibly meet a scene
+/// triangle other than `facet`? (CGAL traversal traits over the scene tree.) A triangle in the
+/// closed half-space behind the facet plane is passed over, as `decide` does: it can meet the
+/// segment at its end on the facet only, which blocks nothing (a sight line is its open
+/// segment) — and a soup's duplicate of the facet, or a coplanar neighbour, lies there.
 struct segment_hits_other {
     const aabb_scene& scene;
     std::size_t facet;
     pt a, b;
+    hplane fp;  ///< the facet's plane
     bool hit = false;
 
     bool go_further() const { return !hit; }
@@ -528,7 +531,10 @@ struct segment_hits_other {
     template <class Primitive>
     void intersection(const epick::Segment_3&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
-        if (idx != facet && segment_may_meet_triangle(a, b, scene.tris[idx].v)) hit = true;
+        if (idx == facet) return;
+        const auto& t = scene.tris[idx].v;
+        if (side(fp, t[0]) >= 0 && side(fp, t[1]) >= 0 && side(fp, t[2]) >= 0) return;
+        if (segment_may_meet_triangle(a, b, t)) hit = true;
     }
 
     template <class Node>
@@ -545,7 +551,7 @@ inline bool sight_line_free(const aabb_scene& scene, std::size_t facet, const ep
     const auto& f = scene.tris[facet].v;
     const P q((f[0][0] + f[1][0] + f[2][0]) / 3, (f[0][1] + f[1][1] + f[2][1]) / 3, (f[0][2] + f[1][2] + f[2][2]) / 3);
     const epick::Segment_3 seg(c, q);
-    segment_hits_other t{scene, facet, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}};
+    segment_hits_other t{scene, facet, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}, facet_plane(f)};
     scene.tree.traversal(seg, t);
     return !t.hit;
 }

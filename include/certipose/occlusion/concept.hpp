@@ -129,10 +129,10 @@ concept ShadowingOcclusionPolicy =
 /// An occlusion policy that can refute VISIBLE cheaply (optional): `sight_line_blocked(p, facet)`
 /// true says the sight line from the point p to the facet's centroid meets another scene
 /// triangle (or that no camera sees the facet at all), so no box holding p is VISIBLE or clear
-/// of its blockers' shadows; false says nothing. A single segment query costs a fraction of the
-/// sight-hull walk, and most facets a pose box fails to see are blocked at its centre too, so
-/// proofs of visibility (solver/detail/box_certifier.hpp) ask this first. A wrong `true` would
-/// only lose a certificate, never add one.
+/// of its blockers' shadows; false says nothing. One segment query is cheaper than the
+/// sight-hull walk, and most facets a box fails to see are blocked at its centre too, so a
+/// caller proving many facets visible from one box (the coverage inspector) asks this first. A
+/// wrong `true` would only lose a certificate, never add one.
 template <class P>
 concept RefutingOcclusionPolicy = requires(const P& policy, const Eigen::Vector3d& p, std::size_t facet) {
     { policy.sight_line_blocked(p, facet) } -> std::same_as<bool>;
