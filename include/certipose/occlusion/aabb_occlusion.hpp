@@ -104,8 +104,8 @@ public:
     occlusion_shadow shadow(std::size_t facet, std::size_t triangle) const;
 
     /// RefutingOcclusionPolicy: whether the segment from `from` to facet `facet`'s centroid
-    /// (rounded to doubles) may meet another scene triangle, or the survey proved the facet
-    /// hidden. True refutes VISIBLE for every box holding `from`. Throws out_of_range("facet"),
+    /// (rounded to doubles), open at the centroid, may meet another scene triangle not wholly
+    /// behind or in the facet's plane, or the survey proved the facet hidden. True refutes VISIBLE for every box holding `from`. Throws out_of_range("facet"),
     /// invalid_argument("point") for a non-finite point.
     bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const;
 
