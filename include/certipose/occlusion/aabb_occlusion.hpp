@@ -105,8 +105,9 @@ public:
 
     /// RefutingOcclusionPolicy: whether the segment from `from` to facet `facet`'s centroid
     /// (rounded to doubles), open at the centroid, may meet another scene triangle not wholly
-    /// behind or in the facet's plane, or the survey proved the facet hidden. True refutes VISIBLE for every box holding `from`. Throws out_of_range("facet"),
-    /// invalid_argument("point") for a non-finite point.
+    /// behind or in the facet's plane, or the survey proved the facet hidden. True refutes
+    /// VISIBLE for every box holding `from`. Throws out_of_range("facet"), invalid_argument("point")
+    /// for a non-finite point.
     bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const;
 
     /// `blockers` gives up after this many possibly blocking triangles (a box that many

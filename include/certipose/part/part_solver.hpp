@@ -103,8 +103,8 @@ struct part_progress {
     double seconds = 0.0;                 ///< elapsed
     /// Estimate: elapsed × (work left / work done), each facet's work estimated by
     /// `part_solver::work_estimate` (a run's facets come in file order, and CAD exports list
-    /// cheap and costly surfaces in runs, so counting facets alone misleads: on counter.off
-    /// it said 56 % of the true time a tenth in, weighting said 83 %).
+    /// cheap and costly surfaces in runs, so counting facets alone misleads; docs/part.md has
+    /// the figures).
     double seconds_left = 0.0;
 };
 
