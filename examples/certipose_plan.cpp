@@ -35,6 +35,7 @@
 #include <certipose/io/output_files.hpp>
 #include <certipose/io/box_store.hpp>
 #include <certipose/io/part_files.hpp>
+#include <certipose/io/make_plan.hpp>
 #include <certipose/io/plan_files.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
@@ -43,7 +44,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -53,7 +53,6 @@
 #include <iostream>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -151,118 +150,6 @@ double since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-/// The same double, bit for bit (so both +inf, for an unbounded d_max): a run whose camera differs
-/// in the last bit of d_min certified its boxes against other constraints, and the difference is
-/// exactly where its box edges sit. summary.json round-trips every double (shortest digits written,
-/// read back in round-to-nearest), so a run of this camera always compares equal.
-bool same(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
-
-/// The run's occluders and camera regions must be the plan's: a box certified without an occluder
-/// may be hidden by it, and one restricted to other regions may stand where the plan forbids.
-/// Occluders are compared by digest and scale (bit for bit), regions exactly, each list in any order.
-void check_scene(const certipose::scene_record& run, const certipose::scene_record& here, const std::string& where) {
-    const auto mismatch = [&](const std::string& what, const std::string& theirs, const std::string& ours) {
-        throw certipose::invalid_argument(what, where + ": the run's " + what + " (" + theirs + ") is not this plan's (" + ours +
-                                                    "): plan with the --occluder, --keep-in and --keep-out the run used");
-    };
-    using occluder = certipose::occluder_record;
-    const auto occluder_key = [](const occluder& o) { return std::pair(o.digest, std::bit_cast<std::uint64_t>(o.scale)); };
-    const auto occluders = [&](std::vector<occluder> list) {
-        std::sort(list.begin(), list.end(), [&](const occluder& a, const occluder& b) { return occluder_key(a) < occluder_key(b); });
-        return list;
-    };
-    const auto occluders_text = [](const std::vector<occluder>& list) {
-        std::string s;
-        for (const auto& o : list)
-            s += (s.empty() ? "" : ", ") + o.path + ":" + certipose::detail::format_double(o.scale) + " digest " + o.digest;
-        return s.empty() ? std::string("none") : s;
-    };
-    const auto a = occluders(run.occluders), b = occluders(here.occluders);
-    if (!std::equal(a.begin(), a.end(), b.begin(), b.end(),
-                    [&](const occluder& x, const occluder& y) { return occluder_key(x) == occluder_key(y); }))
-        mismatch("occluders", occluders_text(run.occluders), occluders_text(here.occluders));
-    const auto region_key = [](const certipose::camera_region& r) {
-        std::array<std::uint64_t, 7> k{static_cast<std::uint64_t>(r.shape)};
-        for (std::size_t i = 0; i < 6; ++i) k[i + 1] = std::bit_cast<std::uint64_t>(r.values[i]);
-        return k;
-    };
-    const auto regions = [&](std::vector<certipose::camera_region> list) {
-        std::sort(list.begin(), list.end(), [&](const auto& x, const auto& y) { return region_key(x) < region_key(y); });
-        return list;
-    };
-    const auto regions_text = [](const std::vector<certipose::camera_region>& list) {
-        std::string s;
-        for (const auto& r : list) s += (s.empty() ? "" : " ") + certipose::to_string(r);
-        return s.empty() ? std::string("none") : s;
-    };
-    for (const auto& [key, theirs, ours] : {std::tuple{"keep_in", &run.regions.keep_in, &here.regions.keep_in},
-                                            std::tuple{"keep_out", &run.regions.keep_out, &here.regions.keep_out}}) {
-        const auto x = regions(*theirs), y = regions(*ours);
-        if (!std::equal(x.begin(), x.end(), y.begin(), y.end(),
-                        [&](const auto& p, const auto& q) { return region_key(p) == region_key(q); }))
-            mismatch(key, regions_text(*theirs), regions_text(*ours));
-    }
-}
-
-/// The run in DIR must be of this mesh, camera and task, with occlusion checked: otherwise its
-/// boxes certify something else.
-void check_run(const certipose::part_summary& run, const certipose::part_summary& here, const fs::path& dir) {
-    const std::string where = (dir / "summary.json").string();
-    const auto mismatch = [&](const std::string& what, const std::string& theirs, const std::string& ours) {
-        throw certipose::invalid_argument(what, where + ": the run's " + what + " (" + theirs + ") is not this plan's (" + ours +
-                                                    "): plan with the mesh, --scale and camera the run used");
-    };
-    const auto text = [](double v) { return certipose::detail::format_double(v); };
-    if (run.mesh.faces != here.mesh.faces)
-        mismatch("mesh.faces", std::to_string(run.mesh.faces), std::to_string(here.mesh.faces));
-    if (!same(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
-    if (!run.mesh.digest.empty() && run.mesh.digest != here.mesh.digest)
-        mismatch("mesh.digest", run.mesh.digest, here.mesh.digest);
-    const auto& a = run.camera;
-    const auto& b = here.camera;
-    if (!same(a.width_px, b.width_px) || !same(a.height_px, b.height_px))
-        mismatch("camera size", text(a.width_px) + "x" + text(a.height_px), text(b.width_px) + "x" + text(b.height_px));
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            if (!same(a.K[r][c], b.K[r][c])) mismatch("camera.K", text(a.K[r][c]), text(b.K[r][c]));
-    // The lens: boxes certified through one distortion (or none) do not hold through another.
-    const auto lens = [&](const auto& cam) {
-        std::string s = "none";
-        if (cam.distortion) {
-            s.clear();
-            for (double k : cam.distortion->opencv()) s += (s.empty() ? "" : ",") + text(k);
-        }
-        return s + ", margin " + text(cam.image_margin_px) + " px";
-    };
-    if (!(a.distortion == b.distortion) || !same(a.image_margin_px, b.image_margin_px))
-        mismatch("camera.distortion_coefficients", lens(a), lens(b));
-    if (!same(a.d_min, b.d_min) || !same(a.d_max, b.d_max))
-        mismatch("camera distance range", text(a.d_min) + ".." + text(a.d_max), text(b.d_min) + ".." + text(b.d_max));
-    // The mount offset changes no box (they are of the projection centre), but the plan's mount
-    // poses are computed with it: a run of another offset is another camera installation.
-    if (a.mount_offset != b.mount_offset) {
-        const auto point = [&](const std::array<double, 3>& p) { return "[" + text(p[0]) + ", " + text(p[1]) + ", " + text(p[2]) + "]"; };
-        mismatch("camera.mount_offset", point(a.mount_offset), point(b.mount_offset));
-    }
-    if (!same(run.task.min_view_angle, here.task.min_view_angle))
-        mismatch("task.min_view_angle", text(run.task.min_view_angle), text(here.task.min_view_angle));
-    // Boxes certified for another placement tolerance (or none) are not this plan's: fewer
-    // placements than asked would be covered, or cameras lost to a tolerance not asked for.
-    if (!(run.task.placement == here.task.placement)) {
-        const auto tol = [&](const std::optional<certipose::placement_tolerance>& t) -> std::string {
-            if (!t) return "none";
-            std::string s = text(t->translation[0]) + "," + text(t->translation[1]) + "," + text(t->translation[2]) + "," +
-                            text(t->rotation);
-            if (t->datum) s += " about " + text(t->datum->x()) + "," + text(t->datum->y()) + "," + text(t->datum->z());
-            return s;
-        };
-        mismatch("task.placement_tolerance", tol(run.task.placement), tol(here.task.placement));
-    }
-    if (!run.settings.occlusion_checked)
-        throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "
-                                                                        "its boxes certify no facet: run it with occlusion");
-    check_scene(run.scene, here.scene, where);
-}
 
 int run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-plan", args.quiet);
@@ -302,7 +189,7 @@ int run(const arguments& args, const interruption& signals) {
     if (!args.part_results.empty()) {
         stage.show("reading " + args.part_results.string());
         const certipose::part_summary run = certipose::read_part_summary(args.part_results);
-        check_run(run, here, args.part_results);
+        certipose::check_part_run(run, here, (args.part_results / "summary.json").string());
         trust_run = !run.mesh.digest.empty();
         records = run.facets;
         certipose::read_part_boxes(args.part_results, run.settings.box_store, [&](const certipose::part_box& b) {
@@ -315,7 +202,7 @@ int run(const arguments& args, const interruption& signals) {
                 box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
             }
             if (args.scene.regions.empty()) return pool.add(b.facet, box);
-            // The run had these very regions (check_run), so its boxes are already allowed: cut
+            // The run had these very regions (check_part_run), so its boxes are already allowed: cut
             // anyway, as the one-shot run does, so that no candidate can leave the allowed space.
             const auto pieces = certipose::split_by_regions(box.position, args.scene.regions,
                                                             args.scene.regions.width(run.settings.position_eps));
@@ -343,114 +230,31 @@ int run(const arguments& args, const interruption& signals) {
     if (signals.interrupted()) return report_interrupted("certipose-plan", signals);
     const double seconds_candidates = since(t0);
     const std::vector<certipose::candidate_box<I>> candidates = pool.boxes();
-    doc.candidates = candidates.size();
-    doc.tolerance = args.tolerance;
 
-    // 2. C(B) of every candidate, plus its own facet when the run is trusted (see above).
-    const auto t1 = std::chrono::steady_clock::now();
-    std::vector<certipose::pose_box<I>> boxes;
-    for (const auto& c : candidates) {
-        if (!args.tolerance) {
-            boxes.push_back(c.box);
-            continue;
-        }
-        const double p = (*args.tolerance)[0], o = (*args.tolerance)[1];
-        boxes.push_back(certipose::around_centre(c.box, {p, p, p, o, o, o}));
-    }
-    certipose::inspection_options iopt;
-    iopt.threads = args.threads;
-    iopt.stop = signals.token();
-    iopt.possible_sets = false;  // the plan needs C(B) only
-    if (progress)
-        iopt.progress = [](std::size_t done, std::size_t all) {
+    // 2.-4. C(B) of every candidate, the choice and its lower bound, the uncovered facets.
+    certipose::plan_options popt;
+    popt.cameras = args.cameras;
+    popt.coverage = args.coverage;
+    popt.tolerance = args.tolerance;
+    popt.lp_seconds = args.lp_seconds;
+    popt.exact_seconds = args.exact;
+    popt.threads = args.threads;
+    popt.stop = signals.token();
+    if (progress) {
+        popt.inspection_progress = [](std::size_t done, std::size_t all) {
             std::fprintf(stderr, "\r\033[Kcertipose-plan: certified facet sets of %zu / %zu candidate boxes", done, all);
             return true;
         };
-    const certipose::inspection_run inspected = certipose::inspect_boxes(solver, boxes, iopt);
+        popt.before_lp = [&](std::size_t chosen) {
+            std::fprintf(stderr, "\r\033[Kcertipose-plan: %zu cameras chosen; GLPK's LP lower bound (up to %g s)...", chosen,
+                         args.lp_seconds);
+        };
+        popt.after_lp = [] { std::fputs("\r\033[K", stderr); };
+    }
+    const certipose::plan_report made = certipose::make_plan(doc, solver, candidates, records, trust_run, popt);
     if (progress) std::fputs("\r\033[K", stderr);
-    if (signals.interrupted() || !inspected.completed) return report_interrupted("certipose-plan", signals);
-    const double seconds_inspection = since(t1);
-    // The inspector's areas: a duplicated face counts once (coverage/inspection.hpp).
-    const std::vector<double> areas = certipose::facet_inspector<policies>(solver).areas();
-    std::vector<certipose::deployment_candidate> sets(candidates.size());
-    for (std::size_t j = 0; j < candidates.size(); ++j) {
-        sets[j].facets = inspected.coverage[j].certified;
-        auto& fs = sets[j].facets;
-        if (trust_run && !std::binary_search(fs.begin(), fs.end(), candidates[j].facet))
-            fs.insert(std::lower_bound(fs.begin(), fs.end(), candidates[j].facet), candidates[j].facet);
-    }
-
-    // 3. The choice and its lower bound.
-    const auto t2 = std::chrono::steady_clock::now();
-    certipose::deployment_options dopt;
-    dopt.cameras = args.cameras;
-    dopt.coverage = args.coverage;
-    doc.max_cameras = args.cameras;
-    doc.target_coverage = args.cameras ? args.coverage : std::optional<double>(args.coverage.value_or(0.95));
-    certipose::deployment_plan plan = certipose::plan_greedy(sets, areas, dopt);
-    std::string method =
-        plan.lower_bound > certipose::area_lower_bound(sets, areas, plan.certified_area) ? "greedy" : "area";
-    const auto lp_limit = std::chrono::milliseconds(static_cast<long long>(std::min(args.lp_seconds, 1e6) * 1000));
-    if (progress)
-        std::fprintf(stderr, "\r\033[Kcertipose-plan: %zu cameras chosen; GLPK's LP lower bound (up to %g s)...",
-                     plan.chosen.size(), args.lp_seconds);
-    const std::size_t lp = certipose::lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9), lp_limit);
-    if (progress) std::fputs("\r\033[K", stderr);
-    if (lp > plan.lower_bound) plan.lower_bound = lp, method = "lp";
-    bool exact = false;
-    if (args.exact && plan.chosen.size() > plan.lower_bound) {
-        const auto limit = std::chrono::milliseconds(static_cast<long long>(*args.exact * 1000));
-        if (const auto best = certipose::plan_exact(sets, areas, plan.certified_area * (1 - 1e-9), limit)) {
-            exact = true;
-            if (best->size() < plan.chosen.size()) {
-                const std::size_t bound = plan.lower_bound;
-                plan = certipose::plan_of(sets, areas, *best);
-                plan.lower_bound = std::max(bound, best->size());
-            } else {
-                plan.lower_bound = plan.chosen.size();  // proven optimal
-            }
-            method = "exact";
-        }
-    }
-    const double seconds_choice = since(t2);
-
-    for (std::size_t k = 0; k < plan.chosen.size(); ++k) {
-        const std::size_t j = plan.chosen[k];
-        const auto record = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, boxes[j]});
-        certipose::plan_document::camera_box cam;
-        cam.position = record.position;
-        cam.orientation = record.orientation;
-        for (std::size_t i = 0; i < 3; ++i) {
-            cam.nominal[i] = 0.5 * (record.position[i][0] + record.position[i][1]);
-            cam.nominal[i + 3] = 0.5 * (record.orientation[i][0] + record.orientation[i][1]);
-        }
-        cam.facets = sets[j].facets;
-        for (std::size_t f : cam.facets) cam.certified_area += areas[f];
-        cam.from_facet = candidates[j].facet;
-        doc.cameras.push_back(std::move(cam));
-    }
-    doc.coverage = {plan.certified_area, plan.coverable_area, plan.total_area, plan.lower_bound, method, plan.curve};
-
-    // 4. The facets no chosen camera certifies, and why.
-    std::vector<char> coverable(mesh.num_faces(), 0);
-    for (const auto& s : sets)
-        for (std::size_t f : s.facets) coverable[f] = 1;
-    std::vector<const certipose::facet_record*> record_of(mesh.num_faces(), nullptr);
-    for (const auto& r : records)
-        if (r.index < record_of.size()) record_of[r.index] = &r;
-    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-        if (plan.covered_by[f] != certipose::deployment_plan::npos) continue;
-        using certipose::uncovered_reason;
-        uncovered_reason why = uncovered_reason::not_solved;
-        if (coverable[f]) why = uncovered_reason::not_selected;
-        else if (const auto* r = record_of[f]; r && r->termination != certipose::facet_termination::skipped) {
-            if (r->valid > 0) why = uncovered_reason::not_selected;  // VALID boxes, none a candidate that proves it
-            else if (r->boundary > 0) why = uncovered_reason::boundary_only;
-            else if (r->termination != certipose::facet_termination::completed) why = uncovered_reason::not_finished;
-            else why = uncovered_reason::never_visible;
-        }
-        doc.uncovered.push_back({f, why});
-    }
+    if (signals.interrupted() || !made.completed) return report_interrupted("certipose-plan", signals);
+    const auto& plan = doc.coverage;
 
     certipose::output_files files;
     files.add(args.out, certipose::json_text(certipose::plan_to_json(doc)));
@@ -462,11 +266,11 @@ int run(const arguments& args, const interruption& signals) {
         const auto pct = [](double a, double b) { return b > 0 ? 100.0 * a / b : 0.0; };
         std::printf("%s (%zu faces): %zu camera box(es) certify %.1f %% of the coverable area (%.1f %% of the part); "
                     "at least %zu needed (%s bound)\n",
-                    args.mesh.string().c_str(), mesh.num_faces(), plan.chosen.size(), pct(plan.certified_area, plan.coverable_area),
-                    pct(plan.certified_area, plan.total_area), plan.lower_bound, method.c_str());
+                    args.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
+                    pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
         std::printf("  %zu candidates (%s %.2f s), their certified facet sets %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
-                    seconds_inspection, seconds_choice, exact ? " (GLPK exact)" : "", doc.uncovered.size());
+                    made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());
         std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply.empty() ? "" : " and ", args.ply.string().c_str());
     }
     return exit_ok;

@@ -27,6 +27,7 @@
 #include <certipose/io/json.hpp>
 #include <certipose/io/output_files.hpp>
 #include <certipose/io/plan_files.hpp>
+#include <certipose/io/verify_poses.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -83,25 +84,6 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     }
 }
 
-/// The tolerance box `t` around `centre`, its positions shrunk about the centre (halved, at most
-/// 40 times, then the centre alone) until the camera regions allow every one: a sub-box of `t`,
-/// so still certified. Nothing when not even the centre is allowed.
-std::optional<certipose::pose_box<I>> within_regions(certipose::pose_box<I> t, const std::array<double, 6>& centre,
-                                                     const certipose::camera_regions& regions) {
-    using certipose::region_verdict;
-    if (regions.empty()) return t;
-    const certipose::rounding_guard<I> rounding;
-    for (int n = 0; n < 40 && regions.classify(t.position) != region_verdict::allowed; ++n)
-        for (std::size_t k = 0; k < 3; ++k) {
-            const double lo = certipose::lower(t.position[k]), hi = certipose::upper(t.position[k]), c = centre[k];
-            t.position.x[k] = I(std::clamp(c - (c - lo) / 2, lo, c), std::clamp(c + (hi - c) / 2, c, hi));
-        }
-    if (regions.classify(t.position) != region_verdict::allowed)
-        for (std::size_t k = 0; k < 3; ++k) t.position.x[k] = I(centre[k]);
-    if (regions.classify(t.position) != region_verdict::allowed) return std::nullopt;
-    return t;
-}
-
 int run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-verify", args.quiet);
     stage.show("reading " + args.mesh.string());
@@ -137,16 +119,9 @@ int run(const arguments& args, const interruption& signals) {
     for (std::size_t i = 0; i < poses.size(); ++i) {
         if (signals.interrupted()) return report_interrupted("certipose-verify", signals);
         const certipose::pose_input& p = poses[i];
-        certipose::pose_box<I> box;
-        for (std::size_t k = 0; k < 3; ++k) {
-            box.position.x[k] = I(p.position[k][0], p.position[k][1]);
-            box.orientation.x[k] = I(p.orientation[k][0], p.orientation[k][1]);
-        }
-        // Camera regions first: a pose or box not wholly in the allowed space certifies no facet.
-        const certipose::region_verdict where = args.scene.regions.classify(box.position);
-        certipose::facet_coverage c;
-        if (where != certipose::region_verdict::forbidden) c = inspector.inspect(box);
-        if (where != certipose::region_verdict::allowed) c.certified.clear(), c.certified_area = 0;
+        const certipose::pose_verification v = certipose::verify_pose(inspector, p, args.scene.regions, args.tolerance);
+        const certipose::region_verdict where = v.where;
+        const certipose::facet_coverage& c = v.coverage;
         for (std::size_t f : c.certified)
             if (!certified_any[f]) certified_any[f] = 1, union_area += inspector.areas()[f];
         nlohmann::ordered_json r;
@@ -161,33 +136,15 @@ int run(const arguments& args, const interruption& signals) {
         r["coverage"] = {total > 0 ? c.certified_area / total : 0.0, total > 0 ? c.possible_area / total : 0.0};
         r["camera_region"] = certipose::to_string(where);
         std::string tolerance_text;
-        // An exact pose, or the centre of a converted one (whose box is ±converted_pose_half_width
-        // in each angle: the half-widths are measured from that box, so they hold for the true pose).
-        const auto& centre = p.pose ? p.pose : p.converted;
-        const double slack = p.pose ? 0.0 : certipose::converted_pose_half_width;
-        if (centre && args.tolerance && !c.certified.empty()) {
-            std::optional<certipose::pose_box<I>> t = inspector.largest_box_keeping(*centre, c.certified);
-            if (t) t = within_regions(*t, *centre, args.scene.regions);
-            std::array<double, 6> half{};
-            if (t) {
-                const auto rec = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, *t});
-                for (std::size_t k = 0; k < 3; ++k) {
-                    half[k] = std::min((*centre)[k] - rec.position[k][0], rec.position[k][1] - (*centre)[k]);
-                    half[k + 3] =
-                        std::min((*centre)[k + 3] - rec.orientation[k][0], rec.orientation[k][1] - (*centre)[k + 3]) - slack;
-                    if (!(half[k + 3] >= 0)) t.reset();
-                }
-            }
-            if (t) {
-                const auto rec = certipose::to_record(certipose::classified_box<I>{certipose::box_class::valid, *t});
-                r["tolerance"] = {{"position", rec.position}, {"orientation", rec.orientation}, {"half_widths", half}};
-                char buf[160];
-                std::snprintf(buf, sizeof buf, "; tolerance +-%.1f/%.1f/%.1f mm, +-%.3f/%.3f/%.3f rad", 1e3 * half[0],
-                              1e3 * half[1], 1e3 * half[2], half[3], half[4], half[5]);
-                tolerance_text = buf;
-            } else {
-                r["tolerance"] = nullptr;
-            }
+        if (v.tolerance_position) {
+            const auto& half = v.half_widths;
+            r["tolerance"] = {{"position", *v.tolerance_position}, {"orientation", *v.tolerance_orientation}, {"half_widths", half}};
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "; tolerance +-%.1f/%.1f/%.1f mm, +-%.3f/%.3f/%.3f rad", 1e3 * half[0],
+                          1e3 * half[1], 1e3 * half[2], half[3], half[4], half[5]);
+            tolerance_text = buf;
+        } else if (v.tolerance_asked) {
+            r["tolerance"] = nullptr;
         }
         list.push_back(std::move(r));
         if (!args.quiet)
