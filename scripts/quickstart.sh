@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # README command (1): install what is missing, build the programs the README shows (Release,
-# -O2: certipose-solve, -part, -plan, -verify, -export and the sample part) and run the
+# -O2: certipose-solve, -part, -plan, -verify, -export, the sample part and the Python module
+# in build/release/python, docs/python.md) and run the
 # main example — the paper's case study (§8) — on the bundled sample part: facet 900, a
 # top-surface facet next to a protrusion, ε_p = 0.1 m, ε_o = 0.38 rad, the camera of examples/data/camera.json.
 set -euo pipefail
@@ -8,7 +9,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake --preset release -DCERTIPOSE_BUILD_TESTS=OFF
 cmake --build --preset release --target certipose-solve certipose-part certipose-plan certipose-verify \
-  certipose-export certipose_sample_part
+  certipose-export certipose_sample_part certipose_python
 out=build/release/case-study
 mkdir -p "$out"
 build/release/examples/certipose-solve --mesh build/release/examples/sample_part.off --facet 900 \

@@ -92,7 +92,7 @@ TEST_CASE("the documentation, headers, examples, scripts and benchmarks point no
     const fs::path root = CERTIPOSE_SOURCE_DIR;
     const std::vector<std::string> outside{"DESIGN.md", "../shared"};
     std::vector<fs::path> files{root / "README.md"};
-    for (const char* dir : {"docs", "include", "examples", "scripts", "bench"})
+    for (const char* dir : {"docs", "include", "examples", "scripts", "bench", "python"})
         for (const auto& e : fs::recursive_directory_iterator(root / dir))
             if (e.is_regular_file()) files.push_back(e.path());
     REQUIRE(files.size() >= 100);
