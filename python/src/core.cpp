@@ -3,14 +3,14 @@
 // It binds the precompiled default pipelines (detail/precompiled.hpp: the default pipeline with
 // a calibrated camera under the aabb, boolean and no-occlusion policies), so importing it
 // compiles nothing. The Python half (python/certipose/__init__.py) turns dicts into the camera
-// JSON, codes into strings and per-facet arrays into one part result; everything that decides
-// an answer is here, in the library.
+// JSON and codes into strings; everything that decides an answer is here, in the library.
 //
-// Threads and the GIL: every solve runs on a thread of its own while the calling thread waits
-// with the GIL released, waking every 50 ms to run Python's signal handlers. A KeyboardInterrupt
-// (or any exception a handler raises) stops the solve through its stop token; the call then
-// raises it once the solve has returned. Progress callbacks are called on the calling thread,
-// never on a worker, so they may do anything Python allows.
+// Threads and the GIL: every solve, part run, inspection, plan and verification runs on a thread
+// of its own while the calling thread waits with the GIL released, waking every 50 ms to run
+// Python's signal handlers. A KeyboardInterrupt (or any exception a handler raises) stops the
+// work through its stop token; the call then raises it once the work has returned. Progress
+// callbacks are called on the calling thread, never on a worker, so they may do anything Python
+// allows. Worker threads never touch a Python object.
 //
 // Arrays out are views into one buffer owned by a capsule: a facet's (N, 6, 2) bounds are
 // `positions` (N, 3, 2) and `orientations` (N, 3, 2) without a copy. Arrays in (a mesh's V, F)
