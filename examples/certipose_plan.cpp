@@ -192,22 +192,7 @@ int run(const arguments& args, const interruption& signals) {
         certipose::check_part_run(run, here, (args.part_results / "summary.json").string());
         trust_run = !run.mesh.digest.empty();
         records = run.facets;
-        certipose::read_part_boxes(args.part_results, run.settings.box_store, [&](const certipose::part_box& b) {
-            if (b.facet >= mesh.num_faces())
-                throw certipose::out_of_range("facet", b.facet, mesh.num_faces());
-            if (b.box.cls != certipose::box_class::valid || !b.occlusion_checked) return;
-            certipose::pose_box<I> box;
-            for (std::size_t k = 0; k < 3; ++k) {
-                box.position.x[k] = I(b.box.position[k][0], b.box.position[k][1]);
-                box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
-            }
-            if (args.scene.regions.empty()) return pool.add(b.facet, box);
-            // The run had these very regions (check_part_run), so its boxes are already allowed: cut
-            // anyway, as the one-shot run does, so that no candidate can leave the allowed space.
-            const auto pieces = certipose::split_by_regions(box.position, args.scene.regions,
-                                                            args.scene.regions.width(run.settings.position_eps));
-            for (const auto& p : pieces.allowed) pool.add(b.facet, certipose::pose_box<I>{p, box.orientation});
-        });
+        certipose::add_run_candidates(pool, args.part_results, run, mesh.num_faces(), args.scene.regions);
         stage.done();
     } else {
         certipose::part_options opt;

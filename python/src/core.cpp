@@ -782,20 +782,7 @@ plan_holder make_plan_py(const solver& s, py::object source, std::size_t per_fac
             cp::check_part_run(run, here, (dir / "summary.json").string());
             trusted = !run.mesh.digest.empty();
             records = run.facets;
-            cp::read_part_boxes(dir, run.settings.box_store, [&](const cp::part_box& b) {
-                if (b.facet >= s.mesh().num_faces()) throw cp::out_of_range("facet", b.facet, s.mesh().num_faces());
-                if (b.box.cls != cp::box_class::valid || !b.occlusion_checked) return;
-                cp::pose_box<I> box;
-                for (std::size_t k = 0; k < 3; ++k) {
-                    box.position.x[k] = I(b.box.position[k][0], b.box.position[k][1]);
-                    box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
-                }
-                if (regions.empty()) return pool.add(b.facet, box);
-                // The run had these very regions (check_part_run), so its boxes are already
-                // allowed: cut anyway, as certipose-plan does, so that no candidate leaves them.
-                const auto pieces = cp::split_by_regions(box.position, regions, regions.width(run.settings.position_eps));
-                for (const auto& p : pieces.allowed) pool.add(b.facet, cp::pose_box<I>{p, box.orientation});
-            });
+            cp::add_run_candidates(pool, dir, run, s.mesh().num_faces(), regions);
             return 0;
         });
     } else {

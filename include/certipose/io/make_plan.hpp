@@ -9,7 +9,8 @@
 // replaced by GLPK's exact answer when one with fewer cameras is proven within `exact_seconds`,
 // with the best lower bound at hand (area, greedy, the LP relaxation within `lp_seconds`, or the
 // exact optimum); the facets no chosen camera certifies are listed with the reason, read from the
-// run's facet records. `check_part_run` refuses a run made for another mesh, camera, task or scene.
+// run's facet records. `check_part_run` refuses a run made for another mesh, camera, task or scene;
+// `add_run_candidates` reads a checked run's boxes as candidates.
 //
 // GLPK is GPL: a program that includes this header links -lglpk (coverage/glpk_deployment.hpp).
 #pragma once
@@ -18,22 +19,24 @@
 #include "certipose/coverage/deployment.hpp"
 #include "certipose/coverage/glpk_deployment.hpp"
 #include "certipose/coverage/inspect_boxes.hpp"
+#include "certipose/io/box_store.hpp"
 #include "certipose/io/plan_files.hpp"
 #include "certipose/part/part_solver.hpp"
 
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstdint>
-#include <tuple>
-#include <utility>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace certipose {
@@ -152,6 +155,29 @@ inline void check_part_run(const part_summary& run, const part_summary& here, co
         throw certipose::invalid_argument("settings.occlusion", where + ": the run did not check occlusion (--occlusion none); "
                                                                         "its boxes certify no facet: run it with occlusion");
     detail::check_run_scene(run.scene, here.scene, where);
+}
+
+/// Adds the VALID, occlusion-checked boxes of the certipose-part folder `dir` to `pool`: `run`
+/// is its summary.json, already compared with the plan by check_part_run, and `num_faces` the
+/// part's face count. The run had the plan's `regions`, so its boxes are already allowed; they
+/// are cut anyway, as a run made for the plan is, so that no candidate can leave the allowed
+/// space. Throws out_of_range for a box of a facet beyond the part, and what read_part_boxes
+/// throws for a damaged store.
+template <Interval I>
+void add_run_candidates(candidate_pool<I>& pool, const std::filesystem::path& dir, const part_summary& run,
+                        std::size_t num_faces, const camera_regions& regions) {
+    read_part_boxes(dir, run.settings.box_store, [&](const part_box& b) {
+        if (b.facet >= num_faces) throw out_of_range("facet", b.facet, num_faces);
+        if (b.box.cls != box_class::valid || !b.occlusion_checked) return;
+        pose_box<I> box;
+        for (std::size_t k = 0; k < 3; ++k) {
+            box.position.x[k] = I(b.box.position[k][0], b.box.position[k][1]);
+            box.orientation.x[k] = I(b.box.orientation[k][0], b.box.orientation[k][1]);
+        }
+        if (regions.empty()) return pool.add(b.facet, box);
+        const auto pieces = split_by_regions(box.position, regions, regions.width(run.settings.position_eps));
+        for (const auto& p : pieces.allowed) pool.add(b.facet, pose_box<I>{p, box.orientation});
+    });
 }
 
 /// The choices of certipose-plan (its options of the same names).
