@@ -8,7 +8,9 @@ goals, measured with the programs of a release build on this machine.
     the binary box store only: wall time, peak resident memory, VALID boxes, bytes on disk,
     facets skipped (buried, covered, duplicates) and how the progress line's ETA would have
     fared (elapsed / done x remaining, after 10 %, 20 %, ... of the facets, against the truth);
-  * certipose-plan --coverage 0.95 from counter.off's folder: wall time, cameras, coverage;
+  * certipose-plan --coverage 0.95 from counter.off's folder: wall time, cameras, coverage,
+    candidates inspected (thinning, docs/coverage.md#thinning); the sample part's plan also with
+    --all-candidates;
   * the same runs with --keep-largest K (the disk a user keeps).
 
     python3 bench/real_cad.py PROGRAMS_DIR SHARED_MESHES OUT_DIR [--keep-largest K] [--skip-counter]
@@ -73,15 +75,17 @@ def part_run(programs, mesh, scale, out, extra):
             "survey": s.get("survey")}
 
 
-def plan_run(programs, mesh, scale, folder, out):
+def plan_run(programs, mesh, scale, folder, out, extra=()):
     cmd = [f"{programs}/certipose-plan", "--mesh", mesh, "--camera", f"{ROOT}/examples/data/camera.json",
-           "--part-results", folder, "--coverage", "0.95", "--threads", "2", "--out", out, "-q"]
+           "--part-results", folder, "--coverage", "0.95", "--threads", "2", "--out", out, "-q"] + list(extra)
     if scale != 1:
         cmd += ["--scale", str(scale)]
     seconds, rss, _ = timed(cmd)
     p = json.load(open(out))
     c = p["coverage"]
     return {"seconds": round(seconds, 1), "rss_mb": round(rss), "cameras": len(p["cameras"]),
+            "lower_bound": c["lower_bound_cameras"], "candidates": p["settings"]["candidates"],
+            "inspected": p["settings"].get("inspected"),
             "coverable_share": round(c["certified_area"] / c["coverable_area"], 4) if c["coverable_area"] else None}
 
 
@@ -103,6 +107,8 @@ def main():
     rows["sample part, both stores"] = part_run(programs, sample, 1, f"{out}/sample", [])
     rows["sample part, binary store"] = part_run(programs, sample, 1, f"{out}/sample_bin", ["--box-store", "binary"])
     rows["sample part plan (binary)"] = plan_run(programs, sample, 1, f"{out}/sample_bin", f"{out}/sample_plan.json")
+    rows["sample part plan, --all-candidates"] = plan_run(programs, sample, 1, f"{out}/sample_bin",
+                                                          f"{out}/sample_plan_all.json", ["--all-candidates"])
     if not a.skip_counter:
         rows["counter.off, binary store"] = part_run(programs, counter, 0.001, f"{out}/counter", ["--box-store", "binary"])
         rows["counter.off plan"] = plan_run(programs, counter, 0.001, f"{out}/counter", f"{out}/counter_plan.json")
@@ -112,12 +118,13 @@ def main():
             rows[f"counter.off plan, --keep-largest {keep}"] = plan_run(
                 programs, counter, 0.001, f"{out}/counter_keep", f"{out}/counter_keep_plan.json")
     json.dump(rows, open(f"{out}/real_cad.json", "w"), indent=1)
-    print("| run | seconds | peak RSS (MB) | VALID | skipped | disk (MB) | cameras | ETA ratio at 10/50/90 % |")
+    print("| run | seconds | peak RSS (MB) | VALID | skipped | disk (MB) | cameras (bound), inspected / candidates | ETA ratio at 10/50/90 % |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for name, r in rows.items():
         eta = r.get("eta_ratio") or {}
+        cams = f"{r['cameras']} ({r['lower_bound']}), {r['inspected']} / {r['candidates']}" if "cameras" in r else ""
         print(f"| {name} | {r['seconds']} | {r['rss_mb']} | {r.get('valid', '')} | {r.get('skipped', '')} | "
-              f"{r.get('disk_mb', '')} | {r.get('cameras', '')} | "
+              f"{r.get('disk_mb', '')} | {cams} | "
               f"{' / '.join(str(eta.get(k, '')) for k in ('10%', '50%', '90%')) if eta else ''} |")
 
 

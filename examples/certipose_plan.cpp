@@ -73,6 +73,7 @@ struct arguments {
     std::size_t per_facet = 1, threads = 0;
     std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
     bool quiet = false;
+    bool all_candidates = false;  ///< --all-candidates: no thinning
     scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
@@ -81,7 +82,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "certipose-plan"};
     std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
         exact, lp_seconds, threads, facets, tolerance;
-    bool quiet = false;
+    bool quiet = false, all_candidates = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
@@ -96,6 +97,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "candidate boxes: half-widths around each VALID box's centre, metres and radians, or 'none' "
                    "for whole boxes (default 0.005,0.02)")
         ->type_name("P,O");
+    app.add_flag("--all-candidates", all_candidates,
+                 "compute the certified facet set of every candidate (default: skip a candidate whose facet an earlier "
+                 "one already certifies; docs/coverage.md#thinning)");
     app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
     app.add_option("--lp-seconds", lp_seconds, "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")->type_name("SECONDS");
     app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
@@ -109,6 +113,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         arguments a;
         a.mesh = mesh, a.camera = camera, a.part_results = part_results, a.out = out, a.ply = ply, a.quiet = quiet;
         a.facets = facets;
+        a.all_candidates = all_candidates;
         if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
         if (!position_eps.empty()) a.position_eps = parse_double("--position-eps", position_eps, "a positive finite number of metres");
         if (!orientation_eps.empty())
@@ -224,6 +229,7 @@ int run(const arguments& args, const interruption& signals) {
     popt.lp_seconds = args.lp_seconds;
     popt.exact_seconds = args.exact;
     popt.threads = args.threads;
+    if (args.all_candidates) popt.thinning.reset();
     popt.stop = signals.token();
     if (progress) {
         popt.inspection_progress = [](std::size_t done, std::size_t all) {
@@ -253,9 +259,9 @@ int run(const arguments& args, const interruption& signals) {
                     "at least %zu needed (%s bound)\n",
                     args.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
                     pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
-        std::printf("  %zu candidates (%s %.2f s), their certified facet sets %.2f s, choice %.2f s%s; %zu facets uncovered\n",
+        std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
-                    made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());
+                    made.inspected, made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());
         std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply.empty() ? "" : " and ", args.ply.string().c_str());
     }
     return exit_ok;

@@ -331,7 +331,7 @@ class Solver:
 
 def _plan(self, part, *, cameras: Optional[int] = None, coverage: Optional[float] = None,
           candidates_per_facet: int = 1, tolerance: Optional[Sequence[float]] = (0.005, 0.02), lp_seconds: float = 60,
-          exact: Optional[float] = None, threads: int = 0,
+          exact: Optional[float] = None, threads: int = 0, all_candidates: bool = False,
           progress: Optional[Callable[[int, int], Optional[bool]]] = None) -> Plan:
     """The fewest camera boxes that certify the part (certipose-plan; docs/coverage.md), from a
     whole-part run: a PartResult of this solver, a certipose-part folder, or a PartResult read
@@ -339,10 +339,12 @@ def _plan(self, part, *, cameras: Optional[int] = None, coverage: Optional[float
     0.95); candidates are the ``candidates_per_facet`` largest VALID boxes of each facet, cut
     to ``tolerance`` = (metres, radians) half-widths around their centres (None: whole boxes);
     GLPK's LP lower bound gets ``lp_seconds``, its exact answer ``exact`` seconds if given.
-    ``progress(done, all)`` follows the candidates' certified facet sets; False cancels."""
+    A candidate whose facet an earlier one already certifies is skipped (docs/coverage.md#thinning)
+    unless ``all_candidates``. ``progress(done, all)`` follows the candidates' certified facet
+    sets; False cancels."""
     opt = _core.plan_options(None if cameras is None else _count("cameras", cameras), coverage,
                              None if tolerance is None else (float(tolerance[0]), float(tolerance[1])),
-                             float(lp_seconds), exact, _count("threads", threads, 0))
+                             float(lp_seconds), exact, _count("threads", threads, 0), bool(all_candidates))
     per = _count("candidates_per_facet", candidates_per_facet)
     if isinstance(part, PartResult) and part.folder is not None:
         part = part.folder

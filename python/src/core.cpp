@@ -733,7 +733,7 @@ struct plan_holder {
 
 cp::plan_options plan_options_of(std::optional<std::size_t> cameras, std::optional<double> coverage,
                                  std::optional<std::array<double, 2>> tolerance, double lp_seconds,
-                                 std::optional<double> exact_seconds, std::size_t threads) {
+                                 std::optional<double> exact_seconds, std::size_t threads, bool all_candidates) {
     cp::plan_options o;
     o.cameras = cameras;
     o.coverage = coverage;
@@ -741,6 +741,7 @@ cp::plan_options plan_options_of(std::optional<std::size_t> cameras, std::option
     o.lp_seconds = lp_seconds;
     o.exact_seconds = exact_seconds;
     o.threads = threads;
+    if (all_candidates) o.thinning.reset();
     o.validate();
     return o;
 }
@@ -1130,7 +1131,7 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("exact", &plan_holder::exact);
 
     m.def("plan_options", &plan_options_of, py::arg("cameras"), py::arg("coverage"), py::arg("tolerance"), py::arg("lp_seconds"),
-          py::arg("exact_seconds"), py::arg("threads"));
+          py::arg("exact_seconds"), py::arg("threads"), py::arg("all_candidates"));
     py::class_<cp::plan_options>(m, "PlanOptions");
     m.def("make_plan", &make_plan_py, py::arg("solver"), py::arg("source"), py::arg("per_facet"), py::arg("trusted"),
           py::arg("mesh_path"), py::arg("scale"), py::arg("options"), py::arg("progress"));

@@ -4,7 +4,8 @@
 #   plan.sh PART PLAN VERIFY MESH CAMERA WORK_DIR
 # The plan is written with its PLY, refuses to overwrite an input or to plan from a run of
 # another scale, mesh or camera (d_min one bit off), rejects contradictory options with exit 2,
-# has a one-shot mode honouring --cameras, and certipose-verify certifies the plan's boxes and
+# has a one-shot mode honouring --cameras, skips candidates by default and inspects all with
+# --all-candidates, and certipose-verify certifies the plan's boxes and
 # the tolerance of an exact pose, and the same facets from the pose given as a quaternion or a 4x4
 # matrix; every JSON written leads with its format and version; another mount offset is refused.
 set -uo pipefail
@@ -25,6 +26,24 @@ grep -q 'camera box(es) certify' out || fail "no summary line: $(cat out)"
 [ -s err ] && fail "stderr not empty: $(cat err)"
 cameras=$(grep -c '"from_facet"' plan.json)
 [ "$cameras" -ge 1 ] || fail "no camera in the plan"
+
+# Thinning: of three candidates per facet (more than one round of 64), fewer are inspected than
+# offered (neighbouring facets certify each other); --all-candidates inspects every one. Both
+# plans reach the target.
+count() { python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['settings']; print(s[sys.argv[2]])" "$1" "$2"; }
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --candidates-per-facet 3 --out thin.json -q 2>err \
+    || fail "certipose-plan --candidates-per-facet 3 failed: $(cat err)"
+[ "$(count thin.json candidates)" -gt 64 ] || fail "only $(count thin.json candidates) candidates"
+[ "$(count thin.json inspected)" -lt "$(count thin.json candidates)" ] \
+    || fail "thinning inspected $(count thin.json inspected) of $(count thin.json candidates) candidates"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --candidates-per-facet 3 --all-candidates \
+    --out all.json -q 2>err \
+    || fail "certipose-plan --all-candidates failed: $(cat err)"
+[ "$(count all.json inspected)" -eq "$(count all.json candidates)" ] || fail "--all-candidates skipped candidates"
+for p in thin.json all.json; do
+    python3 -c "import json,sys; c=json.load(open(sys.argv[1]))['coverage']; sys.exit(c['certified_area'] < 0.9 * c['coverable_area'] * (1 - 1e-9))" "$p" \
+        || fail "$p does not certify 90 % of its coverable area"
+done
 
 # An output that is an input: refused, the input untouched.
 before=$(md5sum < "$camera")

@@ -422,6 +422,18 @@ def test_plan_is_certipose_plan(solver, part, program_part, program_plan):
     assert len(from_run.cameras) >= 2 and from_run.coverage["lower_bound_method"] in ("area", "greedy", "lp", "exact")
 
 
+def test_plan_thinning_and_all_candidates(solver, program_part, tmp_path):
+    out = tmp_path / "ALL.json"
+    subprocess.run([PLAN, "--mesh", MESH, "--camera", CAMERA, "--part-results", str(program_part), "--coverage", "0.9",
+                    "--candidates-per-facet", "3", "--threads", "2", "--all-candidates", "--out", str(out), "-q"], check=True)
+    theirs = json.loads(out.read_text())
+    every = solver.plan(program_part, coverage=0.9, candidates_per_facet=3, threads=2, all_candidates=True).to_dict()
+    assert every == theirs and every["settings"]["inspected"] == every["settings"]["candidates"] > 64
+    # More candidates than one round of 64: those whose facet an inspected one certifies are skipped.
+    thinned = solver.plan(program_part, coverage=0.9, candidates_per_facet=3, threads=2).to_dict()["settings"]
+    assert 1 <= thinned["inspected"] < thinned["candidates"]
+
+
 def test_plan_reports_progress_and_cancels(solver, part):
     calls = []
     with pytest.raises(certipose.Error, match="cancelled"):

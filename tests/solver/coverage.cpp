@@ -3,7 +3,8 @@
 // sampled poses, box corners included, pass the plain evaluator and ray caster for every facet
 // claimed), P(B) ⊇ C(B) and holds every facet a sampled pose really inspects, multi-facet
 // spaces inspect all of their facets, and a plan's every claim passes the same check; greedy
-// against the brute-force optimum on the sample part's candidates.
+// against the brute-force optimum on the sample part's candidates; thinning computes the
+// inspector's C(B) and skips only candidates whose facet an inspected one certifies.
 #include "solver_support.hpp"
 
 #include <certipose/coverage/candidates.hpp>
@@ -11,11 +12,14 @@
 #include <certipose/coverage/inspect_boxes.hpp>
 #include <certipose/coverage/inspection.hpp>
 #include <certipose/coverage/multi_facet.hpp>
+#include <certipose/coverage/thinning.hpp>
 #include <certipose/geometry/triangle_mesh.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
+#include <stop_token>
 #include <string>
 
 using namespace solver_test;
@@ -69,6 +73,17 @@ pose_box<I> box_of(const std::array<std::array<double, 2>, 6>& b) {
         out.orientation.x[k] = I(b[k + 3][0], b[k + 3][1]);
     }
     return out;
+}
+
+/// Plan candidates of the sample part: the `per_facet` largest VALID boxes of every `step`-th facet.
+std::vector<candidate_box<I>> sample_candidates(const pose_solver<>& solver, std::size_t step, std::size_t per_facet) {
+    candidate_pool<I> pool(per_facet);
+    for (std::size_t f = 0; f < solver.part().num_faces(); f += step) {
+        const auto r = solver.solve(f, {.position_eps = 0.1, .orientation_eps = 0.38});
+        for (const auto& b : r.boxes)
+            if (b.cls == box_class::valid) pool.add(f, b.box);
+    }
+    return pool.boxes();
 }
 
 struct coverage_case {
@@ -267,13 +282,7 @@ TEST_CASE("a deployment plan on the sample part: every claim of every camera pas
     const inspection_task task{.min_view_angle = 0.35};
     const pose_solver<> solver(part().mesh, camera, task);
     // Candidates: the largest VALID box of every 100th facet.
-    candidate_pool<I> pool(1);
-    for (std::size_t f = 0; f < part().mesh.num_faces(); f += 100) {
-        const auto r = solver.solve(f, {.position_eps = 0.1, .orientation_eps = 0.38});
-        for (const auto& b : r.boxes)
-            if (b.cls == box_class::valid) pool.add(f, b.box);
-    }
-    const auto candidates = pool.boxes();
+    const auto candidates = sample_candidates(solver, 100, 1);
     REQUIRE(candidates.size() >= 5);
     // Cut to an installation tolerance around their centres: sub-boxes, so still VALID.
     std::vector<pose_box<I>> boxes;
@@ -337,4 +346,64 @@ TEST_CASE("a deployment plan on the sample part: every claim of every camera pas
     CHECK(rep.claims > 50 * plan.chosen.size());  // a tolerance box certifies many facets
     CHECK(plan.certified_area > 0.3 * plan.total_area);
     CHECK(rep.violations == 0);
+}
+
+TEST_CASE("thinning: the C(B) it computes are the inspector's, and every candidate's facet stays certified") {
+    const thin_lens_camera camera(design_camera_parameters());
+    const inspection_task task{.min_view_angle = 0.35};
+    const pose_solver<> solver(part().mesh, camera, task);
+    // Candidates: the two largest VALID boxes of every 50th facet, cut to a tolerance.
+    std::vector<pose_box<I>> boxes;
+    std::vector<std::size_t> facets;
+    for (const auto& c : sample_candidates(solver, 50, 2)) {
+        boxes.push_back(around_centre(c.box, {0.005, 0.005, 0.005, 0.02, 0.02, 0.02}));
+        facets.push_back(c.facet);
+    }
+    REQUIRE(boxes.size() >= 40);
+    const inspection_run all = inspect_boxes(solver, boxes, {.threads = 2, .possible_sets = false});
+    for (const std::size_t round : {std::size_t{1}, std::size_t{4}, std::size_t{64}}) {
+        CAPTURE(round);
+        const thinned_inspection t = inspect_thinned(solver, boxes, facets, {.round = round}, {.threads = 2, .possible_sets = false});
+        REQUIRE(t.completed);
+        CHECK(t.inspected_count == static_cast<std::size_t>(std::count(t.inspected.begin(), t.inspected.end(), char{1})));
+        CHECK(t.inspected_count >= 1);
+        // Neighbouring facets' candidates certify each other's facets: some are skipped.
+        CHECK(t.inspected_count < boxes.size());
+        for (std::size_t j = 0; j < boxes.size(); ++j) {
+            CAPTURE(j);
+            if (t.inspected[j]) {
+                CHECK(t.coverage[j].certified == all.coverage[j].certified);
+                continue;
+            }
+            CHECK(t.coverage[j].certified.empty());
+            // Skipped: an inspected candidate certifies its facet (or is of the same facet).
+            bool certified = false;
+            for (std::size_t i = 0; i < boxes.size() && !certified; ++i)
+                certified = t.inspected[i] && (facets[i] == facets[j] || std::binary_search(t.coverage[i].certified.begin(),
+                                                                                            t.coverage[i].certified.end(), facets[j]));
+            CHECK(certified);
+        }
+        // Which candidates are inspected depends on the rounds, not on the threads.
+        const thinned_inspection one = inspect_thinned(solver, boxes, facets, {.round = round}, {.threads = 1, .possible_sets = false});
+        CHECK(one.inspected == t.inspected);
+    }
+    // Without a candidate's own facet counting, and asking for more certifications than there
+    // are candidates: every candidate is inspected.
+    const thinned_inspection every =
+        inspect_thinned(solver, boxes, facets, {.certified_by = boxes.size() + 1, .own_facet = false}, {.threads = 2});
+    CHECK(every.inspected_count == boxes.size());
+    // Stopped before the first round: nothing claimed.
+    std::stop_source stop;
+    stop.request_stop();
+    const thinned_inspection stopped = inspect_thinned(solver, boxes, facets, {}, {.threads = 2, .stop = stop.get_token()});
+    CHECK_FALSE(stopped.completed);
+    for (const auto& c : stopped.coverage) CHECK(c.certified.empty());
+    // Bad input is named.
+    CHECK_THROWS_AS(inspect_thinned(solver, boxes, std::vector<std::size_t>(facets.size() - 1), {}), invalid_argument);
+    std::vector<std::size_t> beyond = facets;
+    beyond[0] = part().mesh.num_faces();
+    CHECK_THROWS_AS(inspect_thinned(solver, boxes, beyond, {}), out_of_range);
+    CHECK_THROWS_AS(inspect_thinned(solver, boxes, facets, {.round = 0}), invalid_argument);
+    CHECK_THROWS_AS(inspect_thinned(solver, boxes, facets, {.certified_by = 0}), invalid_argument);
+    CHECK_THROWS_AS(inspect_thinned(solver, boxes, facets, {.sample = 0}), invalid_argument);
 }

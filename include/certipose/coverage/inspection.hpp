@@ -115,35 +115,10 @@ public:
         ++stats_.boxes;
         facet_coverage out;
         const triangle_mesh& m = solver_->part();
-        const distance_range range = solver_->range();
-        // The box as a ball (centre, radius) and its orientations as a cone of axes (a0, ρ).
-        Eigen::Vector3d c, half;
-        for (int k = 0; k < 3; ++k) {
-            const auto& x = box.position[static_cast<std::size_t>(k)];
-            c[k] = lower(x) + (upper(x) - lower(x)) / 2;
-            half[k] = (upper(x) - lower(x)) / 2;
-        }
-        const double r = half.norm() * (1 + 1e-12) + 1e-12;
-        const double phi = mid(box.orientation[0]), gamma = mid(box.orientation[1]);
-        const Eigen::Vector3d a0(std::sin(phi) * std::sin(gamma), -std::cos(phi) * std::sin(gamma), std::cos(gamma));
-        // |d axis| ≤ |dγ| + sin γ |dφ| ≤ the half-widths in γ and φ (ZXZ: β only rolls).
-        const double rho = (upper(box.orientation[1]) - lower(box.orientation[1])) / 2 +
-                           (upper(box.orientation[0]) - lower(box.orientation[0])) / 2;
-        const double slack = 1e-6;  // radians and relative: far beyond double rounding
+        const view_cull cull = cull_of(box);
         for (std::size_t f = 0; f < m.num_faces(); ++f) {
-            const facet& fa = m.facet(f);
             // 1. Cull.
-            const Eigen::Vector3d d = fa.centroid - c;
-            const double dist = d.norm();
-            const bool too_far = dist - r - radius_[f] > range.max * (1 + slack);
-            const bool too_near = dist + r + radius_[f] < range.min * (1 - slack);
-            const bool behind = fa.normal.dot(c - fa.v[0]) < -r * (1 + slack);
-            bool out_of_view = false;
-            if (dist > r * (1 + slack)) {
-                const double angle = std::acos(std::clamp(a0.dot(d) / dist, -1.0, 1.0));
-                out_of_view = angle > rho + std::asin(std::min(1.0, r / dist)) + corner_angle_ + slack;
-            }
-            if (too_far || too_near || behind || out_of_view) {
+            if (cull.out(m.facet(f), radius_[f])) {
                 ++stats_.culled;
                 continue;
             }
@@ -160,6 +135,23 @@ public:
             }
         }
         return out;
+    }
+
+    /// The area of the facets of `sample` that the cull (step 1) keeps for `box` and that the
+    /// box's centre sees at the task's viewing angle or steeper (constraint 4 at the centroid): a
+    /// cheap estimate of C(B)'s area over a sample of the part (thinning orders candidates by it).
+    /// Proves nothing: occlusion and the field of view are not asked.
+    double view_estimate(const pose_box<interval_type>& box, const std::vector<std::size_t>& sample) const {
+        const triangle_mesh& m = solver_->part();
+        const view_cull cull = cull_of(box);
+        const double sin_view = std::sin(solver_->task().min_view_angle);
+        double area = 0;
+        for (std::size_t f : sample) {
+            const facet& fa = m.facet(f);
+            const Eigen::Vector3d to_camera = cull.c - fa.centroid;
+            if (!cull.out(fa, radius_[f]) && fa.normal.dot(to_camera) >= sin_view * to_camera.norm()) area += areas_[f];
+        }
+        return area;
     }
 
     /// Whether facet `f` is certified inspected from every pose of `box` (steps 2–3; no cull,
@@ -202,6 +194,47 @@ public:
 
 private:
     enum class decision { impossible, possible, certified };
+
+    // Step 1 for one box: the box as a ball (centre c, radius r) and its orientations as a cone
+    // of optical axes (a0, ρ); `out` proves a facet impossible with plain geometry and margins.
+    struct view_cull {
+        Eigen::Vector3d c, a0;
+        double r = 0, rho = 0, corner_angle = 0;
+        distance_range range;
+        static constexpr double slack = 1e-6;  // radians and relative: far beyond double rounding
+
+        bool out(const facet& fa, double radius) const {
+            const Eigen::Vector3d d = fa.centroid - c;
+            const double dist = d.norm();
+            if (dist - r - radius > range.max * (1 + slack)) return true;           // too far
+            if (dist + r + radius < range.min * (1 - slack)) return true;           // too near
+            if (fa.normal.dot(c - fa.v[0]) < -r * (1 + slack)) return true;         // behind
+            if (dist > r * (1 + slack)) {                                           // out of view
+                const double angle = std::acos(std::clamp(a0.dot(d) / dist, -1.0, 1.0));
+                return angle > rho + std::asin(std::min(1.0, r / dist)) + corner_angle + slack;
+            }
+            return false;
+        }
+    };
+
+    view_cull cull_of(const pose_box<interval_type>& box) const {
+        view_cull v;
+        Eigen::Vector3d half;
+        for (int k = 0; k < 3; ++k) {
+            const auto& x = box.position[static_cast<std::size_t>(k)];
+            v.c[k] = lower(x) + (upper(x) - lower(x)) / 2;
+            half[k] = (upper(x) - lower(x)) / 2;
+        }
+        v.r = half.norm() * (1 + 1e-12) + 1e-12;
+        const double phi = mid(box.orientation[0]), gamma = mid(box.orientation[1]);
+        v.a0 = Eigen::Vector3d(std::sin(phi) * std::sin(gamma), -std::cos(phi) * std::sin(gamma), std::cos(gamma));
+        // |d axis| ≤ |dγ| + sin γ |dφ| ≤ the half-widths in γ and φ (ZXZ: β only rolls).
+        v.rho = (upper(box.orientation[1]) - lower(box.orientation[1])) / 2 +
+                (upper(box.orientation[0]) - lower(box.orientation[0])) / 2;
+        v.corner_angle = corner_angle_;
+        v.range = solver_->range();
+        return v;
+    }
 
     // Steps 2–3 of the header comment for one facet.
     decision decide(const pose_box<interval_type>& box, std::size_t f) {

@@ -19,6 +19,7 @@
 #include "certipose/coverage/deployment.hpp"
 #include "certipose/coverage/glpk_deployment.hpp"
 #include "certipose/coverage/inspect_boxes.hpp"
+#include "certipose/coverage/thinning.hpp"
 #include "certipose/io/box_store.hpp"
 #include "certipose/io/plan_files.hpp"
 #include "certipose/part/part_solver.hpp"
@@ -194,6 +195,9 @@ struct plan_options {
     /// Time for GLPK's exact answer; none: greedy only.
     std::optional<double> exact_seconds{};
     std::size_t threads = 0;  ///< C(B) worker threads; 0: every core
+    /// Skip the candidates whose facet an inspected candidate already certifies
+    /// (coverage/thinning.hpp); none: C(B) of every candidate.
+    std::optional<thinning_options> thinning = thinning_options{};
     std::stop_token stop{};
     /// C(B) progress (candidates done, all), from a worker thread; false stops the plan.
     std::function<bool(std::size_t, std::size_t)> inspection_progress{};
@@ -219,17 +223,19 @@ struct plan_options {
         if (exact_seconds && (!(*exact_seconds > 0.0) || !std::isfinite(*exact_seconds)))
             throw invalid_argument("exact_seconds",
                                    "plan_options: exact_seconds must be positive and finite, got " + detail::format_double(*exact_seconds));
+        if (thinning) thinning->validate();
     }
 };
 
 /// What make_plan measured (seconds) and decided.
 struct plan_report {
     double seconds_inspection = 0, seconds_choice = 0;
+    std::size_t inspected = 0;  ///< candidates whose C(B) was computed (all of them without thinning)
     bool exact = false;      ///< GLPK's exact answer was found within exact_seconds
     bool completed = true;   ///< false: stopped (options.stop, or the progress returned false)
 };
 
-/// Fills `doc`'s candidates, tolerance, max_cameras, target_coverage, cameras, coverage and
+/// Fills `doc`'s candidates, inspected, tolerance, max_cameras, target_coverage, cameras, coverage and
 /// uncovered from `candidates` (their facets and VALID boxes, e.g. candidate_pool::boxes())
 /// and the run's facet `records` (for the reasons of the uncovered). `trust_run`: the run is
 /// known to be of this very mesh, so a candidate's own facet counts as certified by it. The
@@ -249,7 +255,7 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
     doc.candidates = candidates.size();
     doc.tolerance = options.tolerance;
 
-    // C(B) of every candidate, plus its own facet when the run is trusted.
+    // C(B) of every candidate (or of those thinning keeps), plus its own facet when the run is trusted.
     const auto t1 = clock::now();
     std::vector<pose_box<I>> boxes;
     boxes.reserve(candidates.size());
@@ -266,16 +272,32 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
     iopt.stop = options.stop;
     iopt.possible_sets = false;  // the plan needs C(B) only
     iopt.progress = options.inspection_progress;
-    const inspection_run inspected = inspect_boxes(solver, boxes, iopt);
+    std::vector<char> kept(candidates.size(), 1);  // the candidates inspected
+    inspection_run inspected;
+    if (options.thinning) {
+        std::vector<std::size_t> facets;
+        facets.reserve(candidates.size());
+        for (const auto& c : candidates) facets.push_back(c.facet);
+        thinning_options thinning = *options.thinning;
+        thinning.own_facet = thinning.own_facet && trust_run;
+        thinned_inspection t = inspect_thinned(solver, boxes, facets, thinning, iopt);
+        kept = std::move(t.inspected);
+        inspected = std::move(t);
+    } else {
+        inspected = inspect_boxes(solver, boxes, iopt);
+    }
     if (options.stop.stop_requested() || !inspected.completed) {
         report.completed = false;
         return report;
     }
     report.seconds_inspection = since(t1);
+    report.inspected = static_cast<std::size_t>(std::count(kept.begin(), kept.end(), char{1}));
+    doc.inspected = report.inspected;
     // The inspector's areas: a duplicated face counts once (coverage/inspection.hpp).
     const std::vector<double> areas = facet_inspector<Policies>(solver).areas();
     std::vector<deployment_candidate> sets(candidates.size());
     for (std::size_t j = 0; j < candidates.size(); ++j) {
+        if (!kept[j]) continue;  // skipped by thinning: no choice of the plan
         sets[j].facets = inspected.coverage[j].certified;
         auto& fs = sets[j].facets;
         if (trust_run && !std::binary_search(fs.begin(), fs.end(), candidates[j].facet))

@@ -91,6 +91,9 @@ struct plan_document {
     result_document::camera_record camera;
     result_document::task_record task;
     std::size_t candidates = 0;
+    /// Of the candidates, those whose C(B) was computed (coverage/thinning.hpp skips the others);
+    /// a PLAN.json without the field inspected them all.
+    std::size_t inspected = 0;
     /// Half-widths (metres, radians) the candidates were cut to around their centres; none: whole boxes.
     std::optional<std::array<double, 2>> tolerance{};
     std::optional<double> target_coverage{};
@@ -114,6 +117,7 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
     j["camera"] = camera_record_json(p.camera);
     j["task"] = task_record_json(p.task);
     j["settings"] = {{"candidates", p.candidates},
+                     {"inspected", p.inspected},
                      {"tolerance", p.tolerance ? ordered_json{finite((*p.tolerance)[0], "settings.tolerance"),
                                                               finite((*p.tolerance)[1], "settings.tolerance")}
                                                : ordered_json(nullptr)},
@@ -174,6 +178,13 @@ inline plan_document plan_from_json(const nlohmann::json& j, const std::string& 
 
         const json& settings = require_object(require(j, "", "settings", "an object"), "settings");
         p.candidates = as_count(require(settings, "settings", "candidates", "an integer"), "settings.candidates");
+        p.inspected = p.candidates;
+        if (const json* n = find(settings, "inspected"); n && !n->is_null()) {
+            p.inspected = as_count(*n, "settings.inspected");
+            if (p.inspected > p.candidates)
+                fail("settings.inspected", "expected at most settings.candidates (" + std::to_string(p.candidates) + "), got " +
+                                               std::to_string(p.inspected));
+        }
         if (const json* t = find(settings, "tolerance"); t && !t->is_null())
             p.tolerance = as_numbers<2>(*t, "settings.tolerance");
         p.target_coverage = optional_number(settings, "settings", "target_coverage");
