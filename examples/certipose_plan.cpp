@@ -98,8 +98,8 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "for whole boxes (default 0.005,0.02)")
         ->type_name("P,O");
     app.add_flag("--all-candidates", all_candidates,
-                 "compute the certified facet set of every candidate (default: skip a candidate whose facet an earlier "
-                 "one already certifies; docs/coverage.md#thinning)");
+                 "compute the certified facet set of every candidate (default: skip a candidate whose facet an already "
+                 "inspected one certifies, largest estimated view first; docs/coverage.md#thinning)");
     app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
     app.add_option("--lp-seconds", lp_seconds, "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")->type_name("SECONDS");
     app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
@@ -259,7 +259,7 @@ int run(const arguments& args, const interruption& signals) {
                     "at least %zu needed (%s bound)\n",
                     args.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
                     pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
-        std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu %.2f s, choice %.2f s%s; %zu facets uncovered\n",
+        std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu inspected %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
                     made.inspected, made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());
         std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply.empty() ? "" : " and ", args.ply.string().c_str());

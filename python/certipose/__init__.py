@@ -339,8 +339,8 @@ def _plan(self, part, *, cameras: Optional[int] = None, coverage: Optional[float
     0.95); candidates are the ``candidates_per_facet`` largest VALID boxes of each facet, cut
     to ``tolerance`` = (metres, radians) half-widths around their centres (None: whole boxes);
     GLPK's LP lower bound gets ``lp_seconds``, its exact answer ``exact`` seconds if given.
-    A candidate whose facet an earlier one already certifies is skipped (docs/coverage.md#thinning)
-    unless ``all_candidates``. ``progress(done, all)`` follows the candidates' certified facet
+    A candidate whose facet an already inspected one certifies is skipped, largest estimated view
+    first (docs/coverage.md#thinning), unless ``all_candidates``. ``progress(done, all)`` follows the candidates' certified facet
     sets; False cancels."""
     opt = _core.plan_options(None if cameras is None else _count("cameras", cameras), coverage,
                              None if tolerance is None else (float(tolerance[0]), float(tolerance[1])),

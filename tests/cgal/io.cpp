@@ -348,6 +348,7 @@ certipose::plan_document sample_plan() {
     p.camera.mount_offset = {0.01, -0.0125, 1.0 / 3};
     p.task = {0.35, 1e-4};
     p.candidates = 17;
+    p.inspected = 5;
     p.tolerance = std::array<double, 2>{0.005, 0.02};
     p.target_coverage = 0.95;
     p.max_cameras = 4;
@@ -417,6 +418,13 @@ TEST_CASE("PLAN.json: read_plan reads back exactly what plan_to_json wrote") {
     old.erase("format");
     old.erase("version");
     CHECK(certipose::plan_from_json(nlohmann::json::parse(old.dump()), "old.json") == sample_plan());
+    // A file written before thinning inspected every candidate.
+    old["settings"].erase("inspected");
+    CHECK(certipose::plan_from_json(nlohmann::json::parse(old.dump()), "old.json").inspected == 17);
+    // More inspected than offered is not written.
+    certipose::plan_document wrong = sample_plan();
+    wrong.inspected = 18;
+    CHECK_THROWS_AS((void)certipose::plan_to_json(wrong), certipose::invalid_argument);
 }
 
 TEST_CASE("PLAN.json: bad documents are errors naming the file and the JSON path") {
@@ -440,6 +448,8 @@ TEST_CASE("PLAN.json: bad documents are errors naming the file and the JSON path
            "PLAN.json: cameras[0].facets[2]: expected a non-negative integer, got number -1");
     expect([](auto& j) { j["cameras"][0]["nominal"] = {1, 2, 3}; }, "cameras[0].nominal",
            "PLAN.json: cameras[0].nominal: expected an array of 6 numbers, got an array of 3");
+    expect([](auto& j) { j["settings"]["inspected"] = 18; }, "settings.inspected",
+           "PLAN.json: settings.inspected: expected at most settings.candidates (17), got 18");
     expect([](auto& j) { j["settings"]["tolerance"] = 0.005; }, "settings.tolerance",
            "PLAN.json: settings.tolerance: expected an array of 2 numbers, got number 0.005");
     expect([](auto& j) { j["camera"]["mount_offset"] = {0, 0}; }, "camera.mount_offset",

@@ -45,7 +45,9 @@ struct thinning_options {
     /// A candidate is skipped once its facet is certified by this many inspected candidates:
     /// more keeps more choices for the plan (perhaps fewer cameras), at the cost of more C(B).
     std::size_t certified_by = 1;
-    /// Facets (spread evenly over the part) the candidates' view estimates are summed over.
+    /// About how many facets the candidates' view estimates are summed over: every
+    /// ⌊faces / sample⌋-th facet index (between `sample` and 2·`sample` − 1 facets; all of them
+    /// on a part of fewer faces).
     std::size_t sample = 2048;
     /// A candidate's own facet counts as certified by it once it is inspected (a trusted run, in
     /// which every candidate is VALID for its facet: make_plan's trust_run).
@@ -59,7 +61,8 @@ struct thinning_options {
     }
 };
 
-/// C(B) of the inspected candidates (empty for the skipped), and which were inspected.
+/// C(B) of the inspected candidates (empty for the skipped, and for every candidate of a round
+/// that was stopped), and which were inspected.
 struct thinned_inspection : inspection_run {
     std::vector<char> inspected;  ///< by candidate: 1 when its C(B) was computed
     std::size_t inspected_count = 0;
@@ -91,7 +94,8 @@ inline std::vector<std::size_t> thinning_order(const std::vector<double>& estima
 
 /// C(B) of `boxes` (the candidates, whose facets are `facets`, same order), skipping each
 /// candidate whose facet an inspected candidate already certifies (see the header comment).
-/// `options.progress` counts skipped candidates as done. Throws invalid_argument when `facets`
+/// `options.progress` counts skipped candidates as done, and is called with (all, all) at the
+/// end of a completed run. Throws invalid_argument when `facets`
 /// is not as long as `boxes`, and out_of_range for a facet beyond the part.
 template <class Policies>
 thinned_inspection inspect_thinned(const pose_solver<Policies>& solver,
@@ -109,6 +113,10 @@ thinned_inspection inspect_thinned(const pose_solver<Policies>& solver,
     out.coverage.resize(boxes.size());
     out.inspected.assign(boxes.size(), 0);
     std::vector<std::uint32_t> covered(num_faces, 0);  // inspected candidates certifying each facet
+    if (options.stop.stop_requested()) {
+        out.completed = false;
+        return out;
+    }
     detail::box_inspection<Policies> inspection(solver, options);
     const std::vector<std::size_t> order = [&] {
         std::vector<std::size_t> sample;
@@ -129,6 +137,7 @@ thinned_inspection inspect_thinned(const pose_solver<Policies>& solver,
         // One box a task: a round is a few dozen boxes, and a C(B) on a large part takes a tenth
         // of a second, so chunks of several would leave a thread idle at the end of each round.
         if (!inspection.run(boxes, round, out.coverage, done, boxes.size(), 1)) {
+            for (std::size_t j : round) out.coverage[j] = {};  // not all of the round was inspected
             out.completed = false;
             break;
         }
@@ -141,6 +150,8 @@ thinned_inspection inspect_thinned(const pose_solver<Policies>& solver,
             if (thinning.own_facet && !own) ++covered[facets[j]];
         }
     }
+    // The last candidates in the order are mostly skipped, after the last round reported.
+    if (out.completed && options.progress && !boxes.empty()) out.completed = options.progress(boxes.size(), boxes.size());
     out.stats = inspection.stats();
     return out;
 }

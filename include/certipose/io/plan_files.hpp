@@ -116,6 +116,9 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
     if (!p.mesh.digest.empty()) j["mesh"]["digest"] = p.mesh.digest;  // as in summary.json
     j["camera"] = camera_record_json(p.camera);
     j["task"] = task_record_json(p.task);
+    if (p.inspected > p.candidates)
+        throw invalid_argument("settings.inspected", "plan_to_json: settings.inspected " + std::to_string(p.inspected) +
+                                                         " is above settings.candidates " + std::to_string(p.candidates));
     j["settings"] = {{"candidates", p.candidates},
                      {"inspected", p.inspected},
                      {"tolerance", p.tolerance ? ordered_json{finite((*p.tolerance)[0], "settings.tolerance"),
