@@ -612,7 +612,8 @@ TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, 
     std::mt19937_64 rng(37);
     std::uniform_real_distribution<double> U(-0.6, 0.6), H(0.005, 0.05);
     std::uniform_int_distribution<std::size_t> F(0, part.mesh.num_faces() - 1);
-    int blocked = 0, visible = 0;
+    int blocked = 0, visible = 0, hint_moved = 0;
+    std::size_t chained_hint = std::numeric_limits<std::size_t>::max();
     for (int i = 0; i < (debug_build ? 300 : 3000); ++i) {
         const V c(U(rng), U(rng), std::abs(U(rng)) + 0.05);
         const double h = H(rng);
@@ -623,9 +624,73 @@ TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, 
         CAPTURE(i);
         if (refuted) CHECK(v != visibility::visible);
         blocked += refuted, visible += v == visibility::visible;
+        // With a hint, the same answer: the last blocker (as the coverage inspector passes it),
+        // a random triangle, and one beyond the scene.
+        std::size_t random_hint = F(rng), beyond = part.mesh.num_faces() + 5;
+        const std::size_t before = chained_hint;
+        CHECK(fast.sight_line_blocked(b.center(), f, chained_hint) == refuted);
+        CHECK(fast.sight_line_blocked(b.center(), f, random_hint) == refuted);
+        CHECK(fast.sight_line_blocked(b.center(), f, beyond) == refuted);
+        if (chained_hint != before) ++hint_moved;
     }
     CHECK(blocked > 0);
     CHECK(visible > 0);
+    CHECK(hint_moved > 0);  // a walk that found a blocker hands it on
+    // As the inspector asks: every facet in order from one point. Then one triangle blocks
+    // runs of consecutive lines, and the hint it left settles them (it stays as it was).
+    int kept = 0;
+    for (const V& from : {V(0.05, 0.02, 0.12), V(-0.3, 0.25, 0.2), V(0.4, -0.1, 0.08)}) {
+        std::size_t hint = std::numeric_limits<std::size_t>::max();
+        for (std::size_t f = 0; f < part.mesh.num_faces(); ++f) {
+            const std::size_t before = hint;
+            const bool refuted = fast.sight_line_blocked(from, f);
+            CAPTURE(f);
+            CHECK(fast.sight_line_blocked(from, f, hint) == refuted);
+            if (refuted && hint == before) ++kept;
+        }
+    }
+    CHECK(kept > 0);
+}
+
+TEST_CASE("flat patches: edge-adjacent faces exactly in one plane share one, nothing else does") {
+    // A cube whose top is split into four triangles around its centre, then the centre lifted by
+    // one ulp, then a bottom corner lifted: the patches the walks pass over
+    // (cgal_aabb_occlusion.hpp, assign_flat_patches) must be exactly coplanar.
+    using detail::occ::scene_triangle;
+    std::vector<V> v{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0), V(0, 0, 1), V(1, 0, 1), V(1, 1, 1), V(0, 1, 1),
+                     V(0.5, 0.5, 1)};
+    std::vector<face_indices> f{{0, 2, 1}, {0, 3, 2},                          // bottom (z = 0)
+                                {4, 5, 8}, {5, 6, 8}, {6, 7, 8}, {7, 4, 8},    // top (z = 1), 4 faces
+                                {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},    // sides
+                                {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    const auto patches_of = [](const triangle_mesh& m) {
+        std::vector<scene_triangle> tris;
+        detail::occ::append_triangles(tris, m, 0);
+        detail::occ::assign_flat_patches(tris, tris.size());
+        std::vector<std::uint32_t> p;
+        for (const auto& t : tris) p.push_back(t.patch);
+        return p;
+    };
+    const auto p = patches_of(triangle_mesh(v, f));
+    CHECK(p[0] == p[1]);
+    CHECK((p[2] == p[3] && p[3] == p[4] && p[4] == p[5]));
+    CHECK(p[0] != p[2]);
+    for (std::size_t side = 6; side < 14; side += 2) {
+        CHECK(p[side] == p[side + 1]);
+        CHECK(p[side] != p[0]);
+        CHECK(p[side] != p[2]);
+    }
+    CHECK(p[6] != p[8]);
+    // The top's centre one ulp up: the four top faces are no longer one plane.
+    std::vector<V> lifted = v;
+    lifted[8].z() = std::nextafter(1.0, 2.0);
+    const auto q = patches_of(triangle_mesh(lifted, f));
+    CHECK(q[2] != q[3]);
+    CHECK(q[2] != q[4]);
+    // A bottom corner off the plane of the other three: the bottom's two faces part.
+    std::vector<V> tilted = v;
+    tilted[2].z() = 1e-12;
+    CHECK(patches_of(triangle_mesh(tilted, f))[0] != patches_of(triangle_mesh(tilted, f))[1]);
 }
 
 TEST_CASE("the sample part's facet of interest behind its boss: a wall touching the facet") {

@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -250,7 +251,9 @@ private:
             ++stats_.by_constraints;
             return decision::impossible;
         }
-        const verdict fov = certify_fov(moving ? grown(box.position, reach) : box.position, box.orientation, target, frustum_);
+        // The box's sines and cosines (trig_) serve every facet it is asked about.
+        const verdict fov = certify_fov(fov_position<interval_type>(moving ? grown(box.position, reach) : box.position, target),
+                                        box.orientation, frustum_, trig_);
         if (fov == verdict::violated) {
             ++stats_.by_field_of_view;
             return decision::impossible;
@@ -258,7 +261,7 @@ private:
         if (v != verdict::satisfied || fov != verdict::satisfied) return decision::possible;
         ++stats_.occlusion_tests;
         if constexpr (RefutingOcclusionPolicy<typename solver_type::occlusion_type>) {
-            if (const auto c = centre(in_part); c && solver_->occlusion().sight_line_blocked(*c, f)) {
+            if (const auto c = centre(in_part); c && sight_line_blocked(*c, f)) {
                 ++stats_.refuted_by_sight_line;
                 return decision::possible;
             }
@@ -268,6 +271,16 @@ private:
         if (moving && !sight_region_clear(box.position, target.v, target.normal, reach, moving->fixed))
             return decision::possible;
         return decision::certified;
+    }
+
+    // The policy's sight_line_blocked, with the triangle that blocked the last sight line as a
+    // hint when the policy takes one (the same answer, often without a walk of its tree).
+    bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t f) {
+        const auto& occlusion = solver_->occlusion();
+        if constexpr (requires { occlusion.sight_line_blocked(from, f, sight_hint_); })
+            return occlusion.sight_line_blocked(from, f, sight_hint_);
+        else
+            return occlusion.sight_line_blocked(from, f);
     }
 
     // A point of the box (each coordinate between its bounds); nothing for an unbounded box,
@@ -297,6 +310,8 @@ private:
     double corner_angle_ = 0;
     static constexpr std::size_t max_cached_shadows = std::size_t{1} << 16;
     detail::shadow_cache<interval_type> cache_;
+    std::size_t sight_hint_ = std::numeric_limits<std::size_t>::max();  // no triangle yet
+    detail::orientation::angle_trig trig_;  // sines and cosines of the last box's angles (a cache by value)
     inspection_stats stats_;
 };
 

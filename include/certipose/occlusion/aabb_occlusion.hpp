@@ -109,6 +109,11 @@ public:
     /// VISIBLE for every box holding `from`. Throws out_of_range("facet"), invalid_argument("point")
     /// for a non-finite point.
     bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const;
+    /// The same answer, trying triangle `hint` first and then setting it to the triangle that
+    /// blocked: the facets a camera does not see, taken in order, are mostly hidden behind the
+    /// same triangle, which then settles the line without a walk of the tree. Any value is a
+    /// valid hint (one beyond the scene is ignored).
+    bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet, std::size_t& hint) const;
 
     /// `blockers` gives up after this many possibly blocking triangles (a box that many
     /// triangles may block is bisected instead).

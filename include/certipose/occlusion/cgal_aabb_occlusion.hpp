@@ -69,6 +69,8 @@
 #include <utility>
 #include <span>
 #include <string>
+#include <unordered_map>
+#include <unordered_map>
 #include <vector>
 
 namespace certipose {
@@ -79,6 +81,8 @@ struct scene_triangle {
     std::array<pt, 3> v;
     std::array<std::uint32_t, 3> id;  ///< vertex ids; part ids are the part's vertex indices
     pt lo, hi;                        ///< bounding box
+    /// Its flat patch (assign_flat_patches): triangles with the same one lie in one plane, exactly.
+    std::uint32_t patch = 0;
 };
 
 /// Appends the faces of `m` with vertex ids offset by `offset` (so that ids of different
@@ -98,6 +102,45 @@ inline void append_triangles(std::vector<scene_triangle>& out, const triangle_me
         }
         out.push_back(t);
     }
+}
+
+/// Gives the part faces (the first `part_faces` of `tris`) that are edge-adjacent and exactly
+/// coplanar one patch number, and every other triangle one of its own. A triangle of the facet's
+/// patch lies in the facet's plane, where the walks pass it over (it blocks no sight line, as
+/// the closed half-space behind the plane holds it): the patch says so at once, where the sides
+/// of its vertices, each 0, would each take an exact orientation (the filter cannot decide a
+/// point on the plane). On a CAD export the facets of a flat face are mostly such neighbours.
+/// Exact: two faces are joined only when both are non-degenerate and the far vertex of one
+/// lies on the other's plane (orient3 is exact), so by induction a patch is one plane.
+/// Faces whose vertices are not shared by index (an unwelded soup) stay apart: slower, not wrong.
+inline void assign_flat_patches(std::vector<scene_triangle>& tris, std::size_t part_faces) {
+    const certipose::detail::round_to_nearest_scope nearest;  // the orientations' filters assume it
+    std::vector<std::uint32_t> parent(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) parent[i] = static_cast<std::uint32_t>(i);
+    const auto root = [&](std::uint32_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    std::vector<char> flat(part_faces);  // non-degenerate: a plane of its own
+    for (std::size_t i = 0; i < part_faces; ++i) flat[i] = coplanar_orient(tris[i].v[0], tris[i].v[1], tris[i].v[2]) != 0;
+    std::unordered_map<std::uint64_t, std::uint32_t> first_on_edge;  // an edge's first non-degenerate face
+    first_on_edge.reserve(part_faces * 2);
+    for (std::size_t i = 0; i < part_faces; ++i) {
+        if (!flat[i]) continue;
+        const scene_triangle& t = tris[i];
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = t.id[e], b = t.id[(e + 1) % 3];
+            if (a == b) continue;
+            const std::uint64_t key = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+            const auto [it, fresh] = first_on_edge.emplace(key, static_cast<std::uint32_t>(i));
+            if (fresh) continue;
+            const scene_triangle& u = tris[it->second];
+            if (orient3(u.v[0], u.v[1], u.v[2], t.v[(e + 2) % 3]) != 0) continue;  // t's far vertex off u's plane
+            const std::uint32_t ra = root(static_cast<std::uint32_t>(i)), rb = root(it->second);
+            if (ra != rb) parent[ra] = rb;
+        }
+    }
+    for (std::size_t i = 0; i < tris.size(); ++i) tris[i].patch = root(static_cast<std::uint32_t>(i));
 }
 
 /// The immutable scene of an aabb_occlusion: triangles (part faces first, in face order, then
@@ -132,9 +175,13 @@ inline bool line_meets_closed_triangle(const pt& a, const pt& b, const std::arra
 
 /// Tree-node pruning shared by the traversals: the node's box misses H's bounding box or lies
 /// strictly outside one of H's planes from `first_plane` on.
-inline bool node_outside_hull(const sight_hull& H, const pt& lo, const pt& hi, std::size_t first_plane) {
+inline bool node_outside_hull_bounds(const sight_hull& H, const pt& lo, const pt& hi) {
     for (int k = 0; k < 3; ++k)
         if (hi[k] < H.lo[k] || lo[k] > H.hi[k]) return true;
+    return false;
+}
+inline bool node_outside_hull(const sight_hull& H, const pt& lo, const pt& hi, std::size_t first_plane) {
+    if (node_outside_hull_bounds(H, lo, hi)) return true;
     for (std::size_t p = first_plane; p < H.num_planes; ++p)
         if (box_strictly_outside(H.planes[p], lo, hi)) return true;
     return false;
@@ -153,11 +200,6 @@ inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, 
         if (T.hi[k] < H.lo[k] || T.lo[k] > H.hi[k]) return hit::no;
     ++trace.triangles_tested;
     const hplane& fp = H.facet_plane();
-    std::array<int, 3> behind{};
-    for (int m = 0; m < 3; ++m) behind[m] = side(fp, T.v[m]);
-    // Entirely in the closed half-space behind the facet plane: T ∩ H lies in f.
-    if (behind[0] >= 0 && behind[1] >= 0 && behind[2] >= 0) return hit::no;
-
     // Adjacency with the facet (shared part vertices).
     int shared = 0;
     std::array<int, 3> where{-1, -1, -1};  // facet slot of each T vertex
@@ -165,6 +207,12 @@ inline hit decide(const sight_hull& H, const std::array<std::uint32_t, 3>& fid, 
         for (int m = 0; m < 3; ++m)
             for (int s = 0; s < 3; ++s)
                 if (T.id[m] == fid[s]) where[m] = s, ++shared;
+    // A shared vertex is one the facet plane is made of: its side is 0, which the filter cannot
+    // tell and an exact orientation would (every neighbour of the facet has one or two).
+    std::array<int, 3> behind{};
+    for (int m = 0; m < 3; ++m) behind[m] = where[m] >= 0 ? 0 : side(fp, T.v[m]);
+    // Entirely in the closed half-space behind the facet plane: T ∩ H lies in f.
+    if (behind[0] >= 0 && behind[1] >= 0 && behind[2] >= 0) return hit::no;
 
     // T's own plane: sides of the 11 hull points (computed lazily, used by several tests).
     std::array<int, 11> tside{};
@@ -496,22 +544,43 @@ inline bool segment_may_meet_triangle(const pt& a, const pt& b, const std::array
 /// misses by less is only visited, and its triangles are decided exactly. (CGAL's exact
 /// segment–box predicate prunes a little more, but its filter fails whenever an endpoint lies on
 /// a box face, which the centroid of an axis-aligned CAD face does, and exact arithmetic follows.)
-inline bool segment_may_meet_box(const pt& a, const pt& b, const CGAL::Bbox_3& box) {
-    double t0 = 0.0, t1 = 1.0;
-    for (int k = 0; k < 3; ++k) {
-        const double lo = box.min(k), hi = box.max(k);
-        const double margin = 1e-9 * (std::abs(lo) + std::abs(hi) + std::abs(a[k]) + std::abs(b[k])) + 1e-300;
-        const double d = b[k] - a[k];
-        if (d == 0.0) {
-            if (a[k] < lo - margin || a[k] > hi + margin) return false;
-            continue;
+/// The segment's direction and magnitudes are prepared once for the many nodes of one walk:
+/// dividing by the direction is multiplying by its rounded reciprocal, whose few ulps of
+/// relative error in t are a coordinate error over a million times smaller than the margin.
+struct segment_slabs {
+    pt a{}, inv{}, mag{};  ///< start, 1 / (b − a) (inf where 0), |a| + |b|
+    std::array<bool, 3> flat{};  ///< b − a is 0 in that coordinate
+
+    segment_slabs() = default;
+    segment_slabs(const pt& from, const pt& to) : a(from) {
+        for (int k = 0; k < 3; ++k) {
+            const double d = to[k] - from[k];
+            flat[k] = d == 0.0;
+            inv[k] = flat[k] ? 0.0 : 1.0 / d;
+            mag[k] = std::abs(from[k]) + std::abs(to[k]);
         }
-        double ta = (lo - margin - a[k]) / d, tb = (hi + margin - a[k]) / d;
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta), t1 = std::min(t1, tb);
-        if (t0 > t1) return false;
     }
-    return true;
+
+    bool may_meet(const CGAL::Bbox_3& box) const {
+        double t0 = 0.0, t1 = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            const double lo = box.min(k), hi = box.max(k);
+            const double margin = 1e-9 * (std::abs(lo) + std::abs(hi) + mag[k]) + 1e-300;
+            if (flat[k]) {
+                if (a[k] < lo - margin || a[k] > hi + margin) return false;
+                continue;
+            }
+            double ta = (lo - margin - a[k]) * inv[k], tb = (hi + margin - a[k]) * inv[k];
+            if (ta > tb) std::swap(ta, tb);
+            t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+            if (t0 > t1) return false;
+        }
+        return true;
+    }
+};
+
+inline bool segment_may_meet_box(const pt& a, const pt& b, const CGAL::Bbox_3& box) {
+    return segment_slabs(a, b).may_meet(box);
 }
 
 /// Does the sight segment from a (in front of the facet) to b (on it) possibly meet a scene
@@ -525,34 +594,65 @@ struct segment_hits_other {
     pt a, b;
     hplane fp;  ///< the facet's plane
     bool hit = false;
+    std::size_t blocker = 0;  ///< the triangle that made `hit`
+    segment_slabs slabs{a, b};
 
     bool go_further() const { return !hit; }
+
+    /// Is scene triangle idx one the walk passes over: the facet, or wholly on or behind its plane?
+    bool passed_over(std::size_t idx) const {
+        if (idx == facet || scene.tris[idx].patch == scene.tris[facet].patch) return true;  // in the facet plane
+        const auto& t = scene.tris[idx].v;
+        // A vertex shared with the facet lies on its plane (side 0, see decide).
+        const auto& fid = scene.tris[facet].id;
+        const auto on_or_behind = [&](std::size_t m) {
+            const std::uint32_t id = scene.tris[idx].id[m];
+            return id == fid[0] || id == fid[1] || id == fid[2] || side(fp, t[m]) >= 0;
+        };
+        return on_or_behind(0) && on_or_behind(1) && on_or_behind(2);
+    }
 
     template <class Primitive>
     void intersection(const epick::Segment_3&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
-        if (idx == facet) return;
-        const auto& t = scene.tris[idx].v;
-        if (side(fp, t[0]) >= 0 && side(fp, t[1]) >= 0 && side(fp, t[2]) >= 0) return;
-        if (segment_may_meet_triangle(a, b, t)) hit = true;
+        if (passed_over(idx)) return;
+        if (segment_may_meet_triangle(a, b, scene.tris[idx].v)) hit = true, blocker = idx;
+    }
+
+    /// Does triangle idx settle the walk's answer alone? Only when the segment crosses its plane
+    /// and meets it (exact orientations): then the segment meets its bounding box, so the walk
+    /// reaches it and says `hit` too. (A segment in its plane is a "maybe" the walk may never
+    /// reach: not taken from a hint.)
+    bool surely_hit_by(std::size_t idx) const {
+        if (idx >= scene.tris.size() || passed_over(idx)) return false;
+        const auto& w = scene.tris[idx].v;
+        const int sa = orient3(w[0], w[1], w[2], a), sb = orient3(w[0], w[1], w[2], b);
+        if (sa == sb) return false;  // strictly on one side (no), or in the plane (not sure)
+        return line_meets_closed_triangle(a, b, w);
     }
 
     template <class Node>
     bool do_intersect(const epick::Segment_3&, const Node& node) const {
-        return segment_may_meet_box(a, b, node.bbox());
+        return slabs.may_meet(node.bbox());
     }
 };
 
 /// Does the segment from `c` to f's centroid rounded to doubles meet no scene triangle but f?
 /// (Rounding the centroid may sway a grazing segment either way: callers use the answer only
 /// as a filter, see below.)
-inline bool sight_line_free(const aabb_scene& scene, std::size_t facet, const epick::Point_3& c) {
+/// With `hint` (a triangle index, or null): the hinted triangle is tried first and settles the
+/// answer when it surely blocks (segment_hits_other::surely_hit_by), the same answer the walk
+/// gives; `*hint` receives the triangle that blocked.
+inline bool sight_line_free(const aabb_scene& scene, std::size_t facet, const epick::Point_3& c,
+                            std::size_t* hint = nullptr) {
     using P = epick::Point_3;
     const auto& f = scene.tris[facet].v;
     const P q((f[0][0] + f[1][0] + f[2][0]) / 3, (f[0][1] + f[1][1] + f[2][1]) / 3, (f[0][2] + f[1][2] + f[2][2]) / 3);
-    const epick::Segment_3 seg(c, q);
     segment_hits_other t{scene, facet, {c.x(), c.y(), c.z()}, {q.x(), q.y(), q.z()}, facet_plane(f)};
+    if (hint && t.surely_hit_by(*hint)) return false;
+    const epick::Segment_3 seg(c, q);
     scene.tree.traversal(seg, t);
+    if (hint && t.hit) *hint = t.blocker;
     return !t.hit;
 }
 
@@ -593,7 +693,8 @@ struct hull_traversal {
     template <class Primitive>
     void intersection(const sight_hull&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
-        if (idx == facet) return;
+        // In the facet plane (its flat patch): decide would say no.
+        if (idx == facet || scene.tris[idx].patch == scene.tris[facet].patch) return;
         const hit d = decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace);
         if (d == hit::no) return;
         if (collect) {
@@ -619,8 +720,9 @@ struct hull_traversal {
     bool do_intersect(const sight_hull&, const Node& node) const {
         const auto& b = node.bbox();
         const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
-        // Entirely in the closed half-space behind the facet plane: nothing there blocks.
-        if (box_outside_closed(H.facet_plane(), lo, hi)) return false;
+        // Outside H's bounding box (six comparisons: most pruned nodes are), or entirely in the
+        // closed half-space behind the facet plane, where nothing blocks, or outside H.
+        if (node_outside_hull_bounds(H, lo, hi) || box_outside_closed(H.facet_plane(), lo, hi)) return false;
         return !node_outside_hull(H, lo, hi, 1);
     }
 };
@@ -681,7 +783,7 @@ struct blocker_walk {
     template <class Primitive>
     void intersection(const sight_hull&, const Primitive& prim) {
         const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
-        if (idx == facet || stopped) return;
+        if (idx == facet || stopped || scene.tris[idx].patch == scene.tris[facet].patch) return;  // in the facet plane
         if (decide(H, fid, idx < scene.part_faces, scene.tris[idx], trace, false) == hit::no) return;
         if (++seen > aabb_occlusion::max_blockers || !visit(idx)) stopped = true;
     }
@@ -690,7 +792,7 @@ struct blocker_walk {
     bool do_intersect(const sight_hull&, const Node& node) const {
         const auto& b = node.bbox();
         const pt lo{b.xmin(), b.ymin(), b.zmin()}, hi{b.xmax(), b.ymax(), b.zmax()};
-        if (box_outside_closed(H.facet_plane(), lo, hi)) return false;
+        if (node_outside_hull_bounds(H, lo, hi) || box_outside_closed(H.facet_plane(), lo, hi)) return false;
         return !node_outside_hull(H, lo, hi, 1);
     }
 };
@@ -744,6 +846,7 @@ CERTIPOSE_DECL aabb_occlusion::aabb_occlusion(const triangle_mesh& part, std::sp
         detail::occ::append_triangles(s->tris, *m, offset);
         offset += static_cast<std::uint32_t>(m->num_vertices());
     }
+    detail::occ::assign_flat_patches(s->tris, s->part_faces);
     if (s->soup) {
         if (occluders.empty()) {
             s->survey = survey_mesh(part);
@@ -911,6 +1014,12 @@ CERTIPOSE_DECL bool aabb_occlusion::blockers(const Eigen::AlignedBox3d& box, std
 }
 
 CERTIPOSE_DECL bool aabb_occlusion::sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const {
+    std::size_t no_hint = std::numeric_limits<std::size_t>::max();
+    return sight_line_blocked(from, facet, no_hint);
+}
+
+CERTIPOSE_DECL bool aabb_occlusion::sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet,
+                                                        std::size_t& hint) const {
     using namespace detail::occ;
     if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
     if (!from.allFinite())
@@ -918,8 +1027,8 @@ CERTIPOSE_DECL bool aabb_occlusion::sight_line_blocked(const Eigen::Vector3d& fr
                                             detail::format_double(from.x()) + ", " + detail::format_double(from.y()) +
                                             ", " + detail::format_double(from.z()) + ")");
     if (scene_->survey && material_in_front(scene_->survey->hidden[facet])) return true;
-    const detail::round_to_nearest_scope nearest;  // the error bounds of the orientations assume it
-    return !sight_line_free(*scene_, facet, epick::Point_3(from.x(), from.y(), from.z()));
+    const detail::round_to_nearest_scope nearest;
+    return !sight_line_free(*scene_, facet, epick::Point_3(from.x(), from.y(), from.z()), &hint);
 }
 
 CERTIPOSE_DECL occlusion_shadow aabb_occlusion::shadow(std::size_t facet, std::size_t triangle) const {

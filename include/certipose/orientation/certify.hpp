@@ -381,7 +381,7 @@ template <Interval I>
     // Every sine and cosine the box needs, under ONE switch of the rounding mode (a switch
     // costs more than the libm calls; detail/spherical.hpp).
     bounds b_sp, b_cp, b_sg, b_cg, b_sb, b_cb, b_sp0, b_cp0, b_sg0, b_cg0, b_sb0, b_cb0;
-    bounds b_sg_lo, b_cg_lo, b_sg_hi, b_cg_hi, b_cr, b_g;
+    bounds b_sg_lo{}, b_cg_lo{}, b_sg_hi{}, b_cg_hi{}, b_cr{}, b_g;  // the first five: set and used only for `patch`
     {
         const round_to_nearest_scope nearest{};
         // sin and cos at each bound of [e] (slots 0, 1 of `trig`) and at its centre (slot 2).
