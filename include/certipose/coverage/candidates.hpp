@@ -61,10 +61,25 @@ public:
     explicit candidate_pool(std::size_t per_facet = 1) : per_facet_(per_facet) {
         if (per_facet == 0) throw invalid_argument("per_facet", "candidate_pool: keep at least one box per facet");
     }
+    // The copies and moves forget the last facet's list (it points into a map).
+    candidate_pool(const candidate_pool& o) : per_facet_(o.per_facet_), by_facet_(o.by_facet_) {}
+    candidate_pool(candidate_pool&& o) noexcept : per_facet_(o.per_facet_), by_facet_(std::move(o.by_facet_)) { o.last_ = nullptr; }
+    candidate_pool& operator=(const candidate_pool& o) {
+        per_facet_ = o.per_facet_, by_facet_ = o.by_facet_, last_ = nullptr;
+        return *this;
+    }
+    candidate_pool& operator=(candidate_pool&& o) noexcept {
+        per_facet_ = o.per_facet_, by_facet_ = std::move(o.by_facet_), last_ = nullptr, o.last_ = nullptr;
+        return *this;
+    }
+    ~candidate_pool() = default;
 
     /// Offers a VALID box of `facet`; kept if it is among the facet's `per_facet` largest.
     void add(std::size_t facet, const pose_box<I>& box) {
-        auto& kept = by_facet_[facet];
+        // A run's boxes come facet by facet: the last facet's list saves a lookup per box.
+        if (!last_ || last_facet_ != facet) last_ = &by_facet_[facet], last_facet_ = facet;
+        auto& kept = *last_;
+        if (kept.size() == per_facet_ && !larger(box, kept.back())) return;  // not among the largest
         kept.push_back(box);
         std::sort(kept.begin(), kept.end(), larger);
         if (kept.size() > per_facet_) kept.pop_back();
@@ -90,7 +105,9 @@ private:
         return pa != pb ? pa > pb : volume(a.orientation) > volume(b.orientation);
     }
     std::size_t per_facet_;
-    std::map<std::size_t, std::vector<pose_box<I>>> by_facet_;
+    std::map<std::size_t, std::vector<pose_box<I>>> by_facet_;  // std::map: its elements stay put
+    std::vector<pose_box<I>>* last_ = nullptr;
+    std::size_t last_facet_ = 0;
 };
 
 }  // namespace certipose
