@@ -74,6 +74,7 @@ struct arguments {
     std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
     bool quiet = false;
     bool all_candidates = false;  ///< --all-candidates: no thinning
+    bool lp_whole = false;        ///< --lp-whole: the LP bound leaves out no facet class
     scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
@@ -82,7 +83,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "certipose-plan"};
     std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
         exact, lp_seconds, threads, facets, tolerance;
-    bool quiet = false, all_candidates = false;
+    bool quiet = false, all_candidates = false, lp_whole = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
@@ -102,6 +103,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "inspected one certifies, largest estimated view first; docs/coverage.md#thinning)");
     app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
     app.add_option("--lp-seconds", lp_seconds, "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")->type_name("SECONDS");
+    app.add_flag("--lp-whole", lp_whole,
+                 "solve the LP bound's whole program (default: on a large part, leave out its smallest facet classes, "
+                 "at most 1 % of the area, which keeps it a lower bound and solves it in seconds; docs/coverage.md)");
     app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
     app.add_option("--out", out, "the plan")->type_name("PLAN.json")->required();
     app.add_option("--ply", ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
@@ -114,6 +118,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         a.mesh = mesh, a.camera = camera, a.part_results = part_results, a.out = out, a.ply = ply, a.quiet = quiet;
         a.facets = facets;
         a.all_candidates = all_candidates;
+        a.lp_whole = lp_whole;
         if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
         if (!position_eps.empty()) a.position_eps = parse_double("--position-eps", position_eps, "a positive finite number of metres");
         if (!orientation_eps.empty())
@@ -227,6 +232,7 @@ int run(const arguments& args, const interruption& signals) {
     popt.coverage = args.coverage;
     popt.tolerance = args.tolerance;
     popt.lp_seconds = args.lp_seconds;
+    if (args.lp_whole) popt.relaxation.max_left_out = 0;
     popt.exact_seconds = args.exact;
     popt.threads = args.threads;
     if (args.all_candidates) popt.thinning.reset();

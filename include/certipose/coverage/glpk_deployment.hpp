@@ -7,6 +7,12 @@
 //   s.t.     Σ_i a_i y_i ≥ target           (y_i ∈ [0, 1]: facet i counts as certified)
 //            y_i ≤ Σ_{j : i ∈ C(B_j)} x_j    (only if a chosen box certifies it)
 // where facets certified by the same candidates share one y (weighted by their summed area).
+//
+// On a large part the classes number tens of thousands and the simplex runs for minutes. The
+// bound then solves a relaxation (lp_relaxation): the smallest classes are left out and the
+// target is lowered by their area. Every plan's (x, y) restricted to the classes kept is
+// feasible for it (Σ_kept a y ≥ target − Σ_left-out a y ≥ target − left-out area), so its
+// optimum is still a lower bound, and leaving out a sliver of the area removes most rows.
 #pragma once
 
 #include <glpk.h>
@@ -20,8 +26,33 @@
 #include <vector>
 
 #include "certipose/coverage/deployment.hpp"
+#include "certipose/detail/format.hpp"
+#include "certipose/error.hpp"
 
 namespace certipose {
+
+/// Which facet classes the LP bound may leave out (see the header comment): the smallest, while
+/// more than `max_classes` remain, and never more than `max_left_out` of the target area in all.
+/// {max_left_out = 0}: the whole program.
+struct lp_relaxation {
+    std::size_t max_classes = 4096;
+    double max_left_out = 0.01;  ///< share of the target, in [0, 1)
+
+    /// Throws invalid_argument naming the field for an impossible value.
+    void validate() const {
+        if (max_classes < 1) throw invalid_argument("max_classes", "lp_relaxation: max_classes must be at least 1");
+        if (!(max_left_out >= 0.0 && max_left_out < 1.0))
+            throw invalid_argument("max_left_out", "lp_relaxation: max_left_out must be a share in [0, 1), got " +
+                                                       detail::format_double(max_left_out));
+    }
+};
+
+/// The options of lp_lower_bound.
+struct lp_bound_options {
+    /// GLPK's simplex stops here, and then nothing is claimed; none: no limit.
+    std::optional<std::chrono::milliseconds> time_limit{};
+    lp_relaxation relaxation{};
+};
 
 namespace detail {
 
@@ -30,9 +61,11 @@ struct glp_deleter {
 };
 
 /// The covering program for `target` (see the header comment); columns 1..n are the candidates.
+/// With `relaxation`, its smallest classes are left out and the target lowered by their area.
 /// Throws for malformed candidates (GLPK would abort() on a repeated facet). Needs a candidate.
 inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector<deployment_candidate>& candidates,
-                                                               const std::vector<double>& areas, double target) {
+                                                               const std::vector<double>& areas, double target,
+                                                               const std::optional<lp_relaxation>& relaxation = {}) {
     check_candidates(candidates, areas.size());
     glp_term_out(GLP_OFF);
     std::unique_ptr<glp_prob, glp_deleter> lp(glp_create_prob());
@@ -58,6 +91,27 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
         }
         class_area.back() += areas[order[k]];
     }
+    if (relaxation && class_columns.size() > relaxation->max_classes) {
+        // Leave out the smallest classes (ties: the later in the order above, so the same
+        // instance always gives the same program) while the budget allows.
+        std::vector<std::size_t> by_area(class_columns.size());
+        for (std::size_t c = 0; c < by_area.size(); ++c) by_area[c] = c;
+        std::stable_sort(by_area.begin(), by_area.end(), [&](std::size_t a, std::size_t b) { return class_area[a] > class_area[b]; });
+        const double budget = relaxation->max_left_out * target;
+        double left_out = 0;
+        std::size_t keep = by_area.size();
+        while (keep > relaxation->max_classes && left_out + class_area[by_area[keep - 1]] <= budget)
+            left_out += class_area[by_area[--keep]];
+        std::vector<char> kept(class_columns.size(), 0);
+        for (std::size_t k = 0; k < keep; ++k) kept[by_area[k]] = 1;
+        std::vector<const std::vector<int>*> columns;
+        std::vector<double> area;
+        for (std::size_t c = 0; c < kept.size(); ++c)
+            if (kept[c]) columns.push_back(class_columns[c]), area.push_back(class_area[c]);
+        class_columns = std::move(columns), class_area = std::move(area);
+        // Lowered a little more than the sum: its rounding must not make the bound claim more.
+        target -= left_out * (1 + 1e-9);
+    }
     const int n = static_cast<int>(candidates.size()), classes = static_cast<int>(class_columns.size());
     const int rows = 1 + classes;
     glp_add_rows(lp.get(), rows);
@@ -82,21 +136,24 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
 
 }  // namespace detail
 
-/// ⌈optimum of the LP relaxation⌉: no plan certifies `target` m² with fewer boxes. 0 when the
-/// LP could not be solved, or not within `time_limit` (then nothing is claimed): the simplex
-/// grows with the candidates and the facet classes, and a large part has many of both.
+/// ⌈optimum of the LP relaxation⌉ (of the program `options.relaxation` leaves, see the header
+/// comment): no plan certifies `target` m² with fewer boxes. 0 when the LP could not be solved,
+/// or not within `options.time_limit` (then nothing is claimed): the simplex grows with the
+/// candidates and the facet classes, and a large part has many of both. Throws
+/// invalid_argument for bad options.
 inline std::size_t lp_lower_bound(const std::vector<deployment_candidate>& candidates, const std::vector<double>& areas,
-                                  double target, std::optional<std::chrono::milliseconds> time_limit = std::nullopt) {
+                                  double target, const lp_bound_options& options = {}) {
+    options.relaxation.validate();
     if (!(target > 0) || candidates.empty()) {
         detail::check_candidates(candidates, areas.size());
         return 0;
     }
-    auto lp = detail::covering_program(candidates, areas, target);
+    auto lp = detail::covering_program(candidates, areas, target, options.relaxation);
     glp_smcp parm;
     glp_init_smcp(&parm);
     parm.msg_lev = GLP_MSG_OFF;
     parm.presolve = GLP_ON;
-    if (time_limit) parm.tm_lim = static_cast<int>(std::clamp<long long>(time_limit->count(), 1, 1 << 30));
+    if (options.time_limit) parm.tm_lim = static_cast<int>(std::clamp<long long>(options.time_limit->count(), 1, 1 << 30));
     if (glp_simplex(lp.get(), &parm) != 0 || glp_get_status(lp.get()) != GLP_OPT) return 0;
     // A little below the optimum before rounding up: the simplex's own tolerance must not add a box.
     return static_cast<std::size_t>(std::ceil(glp_get_obj_val(lp.get()) - 1e-6));

@@ -192,6 +192,8 @@ struct plan_options {
     std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
     /// Time for GLPK's LP lower bound; a bound not proven by then is not claimed.
     double lp_seconds = 60;
+    /// Which facet classes the LP bound may leave out on a large part (a relaxation, still a bound).
+    lp_relaxation relaxation{};
     /// Time for GLPK's exact answer; none: greedy only.
     std::optional<double> exact_seconds{};
     std::size_t threads = 0;  ///< C(B) worker threads; 0: every core
@@ -224,6 +226,7 @@ struct plan_options {
             throw invalid_argument("exact_seconds",
                                    "plan_options: exact_seconds must be positive and finite, got " + detail::format_double(*exact_seconds));
         if (thinning) thinning->validate();
+        relaxation.validate();
     }
 };
 
@@ -322,7 +325,8 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
     if (stopped()) return report;
     if (options.before_lp) options.before_lp(plan.chosen.size());
     const auto lp_limit = std::chrono::milliseconds(static_cast<long long>(std::min(options.lp_seconds, 1e6) * 1000));
-    const std::size_t lp = lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9), lp_limit);
+    const std::size_t lp = lp_lower_bound(sets, areas, plan.certified_area * (1 - 1e-9),
+                                          {.time_limit = lp_limit, .relaxation = options.relaxation});
     if (options.after_lp) options.after_lp();
     if (lp > plan.lower_bound) plan.lower_bound = lp, method = "lp";
     if (stopped()) return report;
