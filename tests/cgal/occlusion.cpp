@@ -636,20 +636,16 @@ TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, 
     CHECK(blocked > 0);
     CHECK(visible > 0);
     CHECK(hint_moved > 0);  // a walk that found a blocker hands it on
-    // As the inspector asks: every facet in order from one point. Then one triangle blocks
-    // runs of consecutive lines, and the hint it left settles them (it stays as it was).
-    int kept = 0;
+    // As the inspector asks: every facet in order from one point, each hint the one the last
+    // blocked line left.
     for (const V& from : {V(0.05, 0.02, 0.12), V(-0.3, 0.25, 0.2), V(0.4, -0.1, 0.08)}) {
         std::size_t hint = std::numeric_limits<std::size_t>::max();
         for (std::size_t f = 0; f < part.mesh.num_faces(); ++f) {
-            const std::size_t before = hint;
             const bool refuted = fast.sight_line_blocked(from, f);
             CAPTURE(f);
             CHECK(fast.sight_line_blocked(from, f, hint) == refuted);
-            if (refuted && hint == before) ++kept;
         }
     }
-    CHECK(kept > 0);
 }
 
 TEST_CASE("flat patches: edge-adjacent faces exactly in one plane share one, nothing else does") {
@@ -687,6 +683,21 @@ TEST_CASE("flat patches: edge-adjacent faces exactly in one plane share one, not
     const auto q = patches_of(triangle_mesh(lifted, f));
     CHECK(q[2] != q[3]);
     CHECK(q[2] != q[4]);
+    // A collinear sliver (which triangle_mesh refuses, but a scene built otherwise need not)
+    // between the top's edge 4–5 and a face of the front plane y = 0: a degenerate face lies in
+    // every plane through its line, so it must join no patch, or it would join these two.
+    const auto tri = [](std::array<V, 3> p, std::array<std::uint32_t, 3> id) {
+        scene_triangle t;
+        for (std::size_t k = 0; k < 3; ++k) t.v[k] = {p[k].x(), p[k].y(), p[k].z()}, t.id[k] = id[k];
+        return t;
+    };
+    std::vector<scene_triangle> sliver{tri({v[4], v[5], v[8]}, {4, 5, 8}),              // top
+                                       tri({v[5], v[4], V(0.5, 0, 1)}, {5, 4, 9}),      // collinear
+                                       tri({V(0.5, 0, 1), v[4], V(0.5, 0, 0)}, {9, 4, 10})};  // y = 0
+    detail::occ::assign_flat_patches(sliver, sliver.size());
+    CHECK(sliver[1].patch != sliver[0].patch);
+    CHECK(sliver[1].patch != sliver[2].patch);
+    CHECK(sliver[0].patch != sliver[2].patch);
     // A bottom corner off the plane of the other three: the bottom's two faces part.
     std::vector<V> tilted = v;
     tilted[2].z() = 1e-12;

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <cstddef>
 #include <random>
 #include <vector>
@@ -139,6 +141,7 @@ TEST_CASE("GLPK: the relaxed LP, with classes left out, is still a lower bound (
                 lp_lower_bound(cands, areas, target, {.relaxation = {.max_classes = 1, .max_left_out = share}});
             CHECK(relaxed <= fewest);
             CHECK(relaxed <= whole);  // a relaxation never bounds higher than the whole program
+            if (whole > 0) CHECK(relaxed > 0);  // and stays feasible: the target was lowered with it
             if (relaxed < whole) ++relaxed_below;
         }
         // Few enough classes: nothing is left out, whatever the share.
@@ -159,4 +162,14 @@ TEST_CASE("GLPK: bad relaxation options are refused with their field") {
         }
     }
     CHECK_THROWS_AS(lp_lower_bound(two, areas, 3.0, {.relaxation = {.max_classes = 0}}), invalid_argument);
+    // A negative or non-finite area would raise the relaxed target: refused, naming the facet.
+    for (double bad : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        try {
+            (void)lp_lower_bound(two, {1.0, bad}, 0.5);
+            FAIL("accepted area " << bad);
+        } catch (const invalid_argument& e) {
+            CHECK(e.field() == "areas");
+            CHECK(std::string(e.what()).find("facet 1") != std::string::npos);
+        }
+    }
 }

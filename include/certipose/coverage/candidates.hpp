@@ -65,11 +65,11 @@ public:
     candidate_pool(const candidate_pool& o) : per_facet_(o.per_facet_), by_facet_(o.by_facet_) {}
     candidate_pool(candidate_pool&& o) noexcept : per_facet_(o.per_facet_), by_facet_(std::move(o.by_facet_)) { o.last_ = nullptr; }
     candidate_pool& operator=(const candidate_pool& o) {
-        per_facet_ = o.per_facet_, by_facet_ = o.by_facet_, last_ = nullptr;
+        if (this != &o) per_facet_ = o.per_facet_, by_facet_ = o.by_facet_, last_ = nullptr;
         return *this;
     }
     candidate_pool& operator=(candidate_pool&& o) noexcept {
-        per_facet_ = o.per_facet_, by_facet_ = std::move(o.by_facet_), last_ = nullptr, o.last_ = nullptr;
+        if (this != &o) per_facet_ = o.per_facet_, by_facet_ = std::move(o.by_facet_), last_ = nullptr, o.last_ = nullptr;
         return *this;
     }
     ~candidate_pool() = default;

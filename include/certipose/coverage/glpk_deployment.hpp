@@ -21,6 +21,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <string>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -33,7 +35,7 @@ namespace certipose {
 
 /// Which facet classes the LP bound may leave out (see the header comment): the smallest, while
 /// more than `max_classes` remain, and never more than `max_left_out` of the target area in all.
-/// {max_left_out = 0}: the whole program.
+/// {max_left_out = 0}: the whole program (classes of zero area aside, which change nothing).
 struct lp_relaxation {
     std::size_t max_classes = 4096;
     double max_left_out = 0.01;  ///< share of the target, in [0, 1)
@@ -67,6 +69,11 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
                                                                const std::vector<double>& areas, double target,
                                                                const std::optional<lp_relaxation>& relaxation = {}) {
     check_candidates(candidates, areas.size());
+    // A negative area would raise the relaxed target (and NaN breaks the ordering below).
+    for (std::size_t f = 0; f < areas.size(); ++f)
+        if (!(areas[f] >= 0.0) || !std::isfinite(areas[f]))
+            throw invalid_argument("areas", "deployment: facet " + std::to_string(f) + " has area " +
+                                                detail::format_double(areas[f]) + "; areas must be finite and >= 0");
     glp_term_out(GLP_OFF);
     std::unique_ptr<glp_prob, glp_deleter> lp(glp_create_prob());
     glp_set_obj_dir(lp.get(), GLP_MIN);
@@ -109,8 +116,9 @@ inline std::unique_ptr<glp_prob, glp_deleter> covering_program(const std::vector
         for (std::size_t c = 0; c < kept.size(); ++c)
             if (kept[c]) columns.push_back(class_columns[c]), area.push_back(class_area[c]);
         class_columns = std::move(columns), class_area = std::move(area);
-        // Lowered a little more than the sum: its rounding must not make the bound claim more.
-        target -= left_out * (1 + 1e-9);
+        // Lowered a little more than the sum, and the difference rounded down: rounding must not
+        // make the bound claim more.
+        target = std::nextafter(target - left_out * (1 + 1e-9), -std::numeric_limits<double>::infinity());
     }
     const int n = static_cast<int>(candidates.size()), classes = static_cast<int>(class_columns.size());
     const int rows = 1 + classes;

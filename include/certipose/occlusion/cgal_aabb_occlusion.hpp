@@ -70,7 +70,6 @@
 #include <span>
 #include <string>
 #include <unordered_map>
-#include <unordered_map>
 #include <vector>
 
 namespace certipose {
@@ -548,7 +547,7 @@ inline bool segment_may_meet_triangle(const pt& a, const pt& b, const std::array
 /// dividing by the direction is multiplying by its rounded reciprocal, whose few ulps of
 /// relative error in t are a coordinate error over a million times smaller than the margin.
 struct segment_slabs {
-    pt a{}, inv{}, mag{};  ///< start, 1 / (b − a) (inf where 0), |a| + |b|
+    pt a{}, inv{}, mag{};  ///< start, 1 / (b − a) (0 where `flat`), |a| + |b|
     std::array<bool, 3> flat{};  ///< b − a is 0 in that coordinate
 
     segment_slabs() = default;
