@@ -37,6 +37,8 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -527,6 +529,40 @@ template <Interval I>
 verdict certify_fov(const fov_position<I>& pos, const orientation_box<I>& orientation, const fov_frustum<I>& frustum) {
     detail::orientation::angle_trig trig;
     return certify_fov(pos, orientation, frustum, trig);
+}
+
+/// Proves constraint 5 over [p] × `box` by `certify_fov`, splitting `box` while undecided: at
+/// most `budget` evaluations, counted in `certifications`. β spanning π or more is never split
+/// (the roll-free cone test does not improve on halves of it). True when every tile is
+/// certified, so the whole box is. How paper_orientation certifies what it finds, and how a box
+/// it found is proven again (part/translates.hpp).
+template <Interval I>
+bool certify_fov_tiled(const fov_position<I>& position, const orientation_box<I>& box, const fov_frustum<I>& frustum,
+                       std::size_t budget, std::size_t& certifications) {
+    // The sines and cosines of a box's bounds and centre go with it: the refutation and the
+    // first evaluation share all their bounds, and a tile all but the two its split made.
+    detail::orientation::angle_trig trig;
+    if (fov_refuted(position, box, frustum, trig)) return false;
+    std::vector<std::pair<orientation_box<I>, detail::orientation::angle_trig>> stack{{box, trig}};
+    std::size_t used = 0;
+    while (!stack.empty()) {
+        auto [b, t] = stack.back();
+        stack.pop_back();
+        // This tile and every pending one need an evaluation each: when the budget cannot
+        // cover them, the answer is already `false` (spending the rest would not change it).
+        if (used + 1 + stack.size() > budget) return false;
+        ++used, ++certifications;
+        const verdict v = certify_fov(position, b, frustum, t);
+        if (v == verdict::satisfied) continue;
+        if (v == verdict::violated) return false;
+        if (width(b[2]) >= detail::orientation::pi_lo) return false;
+        const std::size_t k = widest_dimension(b);
+        const auto [l, r] = bisect_at(b, k, split_point(b[k]));
+        if (!(lower(b[k]) < upper(l[k]) && upper(l[k]) < upper(b[k]))) return false;  // cannot split
+        stack.emplace_back(r, t);
+        stack.emplace_back(l, t);
+    }
+    return true;
 }
 
 /// Same for a position box given as such. Throws invalid_argument("facet") for a non-finite vertex.

@@ -668,30 +668,7 @@ public:
     template <Interval I>
     bool certify_tiled(const fov_position<I>& position, const orientation_box<I>& box,
                        const fov_frustum<I>& frustum, std::size_t& certifications) const {
-        // The sines and cosines of a box's bounds and centre go with it: the refutation and the
-        // first evaluation share all their bounds, and a tile all but the two its split made.
-        detail::orientation::angle_trig trig;
-        if (fov_refuted(position, box, frustum, trig)) return false;
-        std::vector<std::pair<orientation_box<I>, detail::orientation::angle_trig>> stack{{box, trig}};
-        std::size_t used = 0;
-        while (!stack.empty()) {
-            auto [b, t] = stack.back();
-            stack.pop_back();
-            // This tile and every pending one need an evaluation each: when the budget cannot
-            // cover them, the answer is already `false` (spending the rest would not change it).
-            if (used + 1 + stack.size() > options_.tiling_budget) return false;
-            ++used, ++certifications;
-            const verdict v = certify_fov(position, b, frustum, t);
-            if (v == verdict::satisfied) continue;
-            if (v == verdict::violated) return false;
-            if (width(b[2]) >= detail::orientation::pi_lo) return false;
-            const std::size_t k = widest_dimension(b);
-            const auto [l, r] = bisect_at(b, k, split_point(b[k]));
-            if (!(lower(b[k]) < upper(l[k]) && upper(l[k]) < upper(b[k]))) return false;  // cannot split
-            stack.emplace_back(r, t);
-            stack.emplace_back(l, t);
-        }
-        return true;
+        return certify_fov_tiled(position, box, frustum, options_.tiling_budget, certifications);
     }
 
 private:
