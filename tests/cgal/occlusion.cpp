@@ -577,6 +577,34 @@ TEST_CASE("occluders: a slab that hides the facet, one that hides part of it, on
     CHECK(run(cuboid(V(1, -1, 1), V(2, 2, 1.5))).first == visibility::visible);
 }
 
+TEST_CASE("front_clear: nothing in front of the facet within the region, checked by sampled sight lines") {
+    const triangle_mesh cube = cuboid(V(0, 0, 0), V(1, 1, 1));
+    const std::size_t top = face_with(cube, V(0, 0, 1), V(1, 0, 1), V(1, 1, 1));
+    const std::size_t bottom = face_with(cube, V(0, 0, 0), V(1, 1, 0), V(1, 0, 0));
+    const aabb_occlusion alone(cube);
+    // A box that touches the facet plane is fine: the answer is about its positions in front.
+    const box3 above(V(-2, -2, 1), V(3, 3, 4)), below(V(-2, -2, -4), V(3, 3, 0));
+    CHECK(alone.front_clear(above, top));
+    CHECK(alone.front_clear(below, bottom));
+    // A post standing on the cube, in front of the top face: not clear, and a sight line meets it.
+    const std::vector<triangle_mesh> post{cuboid(V(0.3, 0.3, 1.0), V(0.7, 0.7, 1.4))};
+    const aabb_occlusion with_post(cube, post);
+    CHECK(!with_post.front_clear(above, top));
+    CHECK(with_post.front_clear(below, bottom));  // behind the bottom face's plane: harmless
+    // Out of the region (the bounding box of the box and the facet): clear again.
+    const std::vector<triangle_mesh> far_post{cuboid(V(5, 5, 1.0), V(5.5, 5.5, 1.4))};
+    CHECK(aabb_occlusion(cube, far_post).front_clear(above, top));
+    CHECK(!aabb_occlusion(cube, far_post).front_clear(box3(V(-2, -2, 1), V(6, 6, 4)), top));
+    // Whenever it says clear, no sampled sight line from the box's front part is blocked.
+    const segment_sampler S({&cube, &post[0]});
+    std::mt19937_64 rng(7);
+    const box3 beside(V(0.8, -2, 1.0), V(3, 3, 2));  // the post is inside its region
+    CHECK(!with_post.front_clear(beside, top));
+    CHECK(S.blocked(box3(V(-2, -2, -4), V(3, 3, -0.01)), bottom, 400, 0.0, rng) == 0);
+    CHECK(S.blocked(box3(V(-2, -2, 1.01), V(3, 3, 4)), top, 400, 0.0, rng) > 0);  // not clear, and indeed blocked
+    CHECK_THROWS_AS(alone.front_clear(above, 12), out_of_range);
+}
+
 TEST_CASE("sight_line_blocked: a slab over the facet blocks, nothing else does, and it never refutes a VISIBLE box") {
     const triangle_mesh cube = cuboid(V(0, 0, 0), V(1, 1, 1));
     const std::size_t top = face_with(cube, V(0, 0, 1), V(1, 0, 1), V(1, 1, 1));

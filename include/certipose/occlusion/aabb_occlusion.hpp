@@ -115,6 +115,19 @@ public:
     /// valid hint (one beyond the scene is ignored).
     bool sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet, std::size_t& hint) const;
 
+    /// Whether every sight line from a position of `box` strictly in front of facet `facet`'s
+    /// plane to any point of the facet is free: no scene triangle but the facet has a point
+    /// strictly in front of that plane within the bounding box of `box` and the facet (exact
+    /// orientations). Such a line lies in that bounding box, and strictly in front of the plane
+    /// but at its end, so no triangle wholly on or behind the plane can meet it. False for a
+    /// facet the survey proved hidden. The caller proves its positions in front (the part
+    /// solver's reuse stage, part/translates.hpp). Throws as `classify`.
+    bool front_clear(const Eigen::AlignedBox3d& box, std::size_t facet) const;
+    template <Interval I>
+    bool front_clear(const position_box<I>& box, std::size_t facet) const {
+        return front_clear(detail::occ::box_bounds(box, "aabb_occlusion"), facet);
+    }
+
     /// `blockers` gives up after this many possibly blocking triangles (a box that many
     /// triangles may block is bisected instead).
     static constexpr std::size_t max_blockers = 64;

@@ -796,6 +796,41 @@ struct blocker_walk {
     }
 };
 
+/// aabb_occlusion::front_clear's walk: stops at the first triangle but the facet that has a
+/// vertex strictly in front of the facet's plane and a bounding box meeting the region.
+struct front_walk {
+    const aabb_scene& scene;
+    std::size_t facet;
+    const hplane& plane;  ///< the facet's: side < 0 in front
+    pt lo, hi;            ///< the region
+    bool blocked = false;
+
+    bool go_further() const { return !blocked; }
+
+    template <class Primitive>
+    void intersection(const CGAL::Bbox_3&, const Primitive& prim) {
+        const auto idx = static_cast<std::size_t>(prim.id() - scene.cgal_tris.begin());
+        if (idx == facet || blocked) return;
+        const scene_triangle& t = scene.tris[idx];
+        for (int k = 0; k < 3; ++k)
+            if (t.hi[k] < lo[k] || t.lo[k] > hi[k]) return;
+        for (const pt& v : t.v)
+            if (side(plane, v) < 0) {
+                blocked = true;
+                return;
+            }
+    }
+
+    template <class Node>
+    bool do_intersect(const CGAL::Bbox_3&, const Node& node) const {
+        const auto& b = node.bbox();
+        const pt nlo{b.xmin(), b.ymin(), b.zmin()}, nhi{b.xmax(), b.ymax(), b.zmax()};
+        for (int k = 0; k < 3; ++k)
+            if (nhi[k] < lo[k] || nlo[k] > hi[k]) return false;
+        return !box_outside_closed(plane, nlo, nhi);  // wholly on or behind the plane: nothing in front
+    }
+};
+
 /// The part, then each occluder.
 inline std::vector<const triangle_mesh*> scene_meshes(const triangle_mesh& part,
                                                      std::span<const triangle_mesh> occluders) {
@@ -1010,6 +1045,22 @@ CERTIPOSE_DECL bool aabb_occlusion::blockers(const Eigen::AlignedBox3d& box, std
     blocker_walk walk{H, *scene_, facet, F.id, visit};
     scene_->tree.traversal(H, walk);
     return !walk.stopped;
+}
+
+CERTIPOSE_DECL bool aabb_occlusion::front_clear(const Eigen::AlignedBox3d& box, std::size_t facet) const {
+    using namespace detail::occ;
+    const Eigen::AlignedBox3d b = checked_bounds(box, "aabb_occlusion");
+    if (facet >= scene_->part_faces) throw out_of_range("facet", facet, scene_->part_faces);
+    if (scene_->survey && material_in_front(scene_->survey->hidden[facet])) return false;
+    const detail::round_to_nearest_scope nearest;
+    const scene_triangle& F = scene_->tris[facet];
+    const hplane fp = facet_plane(F.v);
+    // The region every such sight line lies in: the bounding box of the box and the facet.
+    pt lo{b.min().x(), b.min().y(), b.min().z()}, hi{b.max().x(), b.max().y(), b.max().z()};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], F.lo[k]), hi[k] = std::max(hi[k], F.hi[k]);
+    front_walk walk{*scene_, facet, fp, lo, hi};
+    scene_->tree.traversal(CGAL::Bbox_3(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]), walk);
+    return !walk.blocked;
 }
 
 CERTIPOSE_DECL bool aabb_occlusion::sight_line_blocked(const Eigen::Vector3d& from, std::size_t facet) const {
