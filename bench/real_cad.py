@@ -2,8 +2,9 @@
 """Real CAD parts at 10^5 triangles (docs/part.md#real-cad-parts): the figures of issue 36's
 goals, measured with the programs of a release build on this machine.
 
-  * the sample part, default paving, 2 threads: wall time, VALID boxes, certified share of
-    the case study is unchanged by construction (the same solver), so only time is compared;
+  * the sample part, default paving, 2 threads: wall time and VALID boxes, with and without
+    --no-reuse (every facet paved on its own; tests/solver/part.cpp checks that the certified
+    volume of the facets that take a translate's boxes is their own paving's);
   * counter.off (a real CAD export of 83 750 triangles in mm, --scale 0.001, from the folder given), every facet, 2 threads,
     the binary box store only: wall time, peak resident memory, VALID boxes, bytes on disk,
     facets skipped (buried, covered, duplicates) and how the progress line's ETA would have
@@ -72,7 +73,7 @@ def part_run(programs, mesh, scale, out, extra):
     t = s["totals"]
     return {"seconds": round(seconds, 1), "rss_mb": round(rss), "valid": t["valid"], "skipped": t["skipped"],
             "facets": t["facets"], "disk_mb": round(folder_bytes(out) / 1e6), "eta_ratio": eta_errors(s),
-            "survey": s.get("survey")}
+            "survey": s.get("survey"), "reused": sum(1 for f in s["facets"] if "reused_from" in f)}
 
 
 def plan_run(programs, mesh, scale, folder, out, extra=()):
@@ -106,6 +107,10 @@ def main():
     rows = {}
     rows["sample part, both stores"] = part_run(programs, sample, 1, f"{out}/sample", [])
     rows["sample part, binary store"] = part_run(programs, sample, 1, f"{out}/sample_bin", ["--box-store", "binary"])
+    # Before/after the reuse between translates (docs/part.md#reuse-between-translates): the
+    # same run with every facet paved on its own.
+    rows["sample part, binary store, --no-reuse"] = part_run(programs, sample, 1, f"{out}/sample_bin_alone",
+                                                              ["--box-store", "binary", "--no-reuse"])
     rows["sample part plan (binary)"] = plan_run(programs, sample, 1, f"{out}/sample_bin", f"{out}/sample_plan.json")
     rows["sample part plan, --all-candidates"] = plan_run(programs, sample, 1, f"{out}/sample_bin",
                                                           f"{out}/sample_plan_all.json", ["--all-candidates"])

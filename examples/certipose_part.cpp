@@ -8,7 +8,7 @@
 //                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
 //                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
 //                  [--working-distance DMIN,DMAX --min-view-angle RAD] [--mesh-semantics auto|solid|soup]
-//                  [--keep-largest K] [--box-store jsonl|binary|both] [--quiet]
+//                  [--keep-largest K] [--box-store jsonl|binary|both] [--no-reuse] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
 // restricted to the --keep-in / --keep-out camera regions before they are written
@@ -65,7 +65,7 @@ struct arguments {
     double position_eps = 0.1, orientation_eps = 0.38, scale = 1.0;
     std::size_t threads = 0;
     std::string facets;
-    bool boundary = false, quiet = false, paper_paving = false, grow = false;
+    bool boundary = false, quiet = false, paper_paving = false, grow = false, reuse = true;
     std::optional<double> refine;
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
@@ -83,7 +83,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
         facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb", keep_largest,
         box_store = "both";
-    bool boundary = false, quiet = false, paper_paving = false, grow = false;
+    bool boundary = false, quiet = false, paper_paving = false, grow = false, no_reuse = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")->type_name("METRES")->required();
@@ -107,6 +107,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "(eps/10; default 3, 2 certifies more, slower)")->type_name("PIECES");
     app.add_option("--refine", refine, "per facet, keep refining below position-eps for SECONDS")->type_name("SECONDS");
     app.add_flag("--grow", grow, "widen the VALID boxes: merge neighbours, move faces out while certified");
+    app.add_flag("--no-reuse", no_reuse,
+                 "pave every facet on its own (default: a facet nothing can occlude takes the boxes of a translate of it, "
+                 "each proven again)");
     app.add_option("--keep-largest", keep_largest, "keep only the K largest VALID boxes of each facet (6D volume)")->type_name("K");
     app.add_option("--box-store", box_store,
                    "which box files to write: jsonl (boxes.jsonl), binary (boxes.cpbx, docs/part.md) or both (default)")
@@ -137,6 +140,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!corner_depth.empty()) a.corner_depth = parse_corner_depth(corner_depth);
         if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
+        a.reuse = !no_reuse;
         if (!keep_largest.empty()) a.keep_largest = parse_count("--keep-largest", keep_largest, 1);
         a.write_jsonl = box_store != "binary";
         a.write_binary = box_store != "jsonl";
@@ -183,6 +187,7 @@ void describe_run_settings(certipose::part_summary& s, const arguments& args, co
     st.max_boxes = args.max_boxes;
     st.facets = args.facets;
     st.keep_largest = args.keep_largest;
+    st.reuse = args.reuse;
     st.box_store = args.write_jsonl && args.write_binary ? "both" : args.write_binary ? "binary" : "jsonl";
     st.mesh_semantics = certipose::checks_occlusion<Occlusion> ? "solid" : "none";  // the boolean test reads solids
     if constexpr (requires { occlusion.survey(); }) {
@@ -233,6 +238,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.threads = args.threads;
     opt.keep_boundary = args.boundary;
     opt.keep_largest = args.keep_largest;
+    opt.reuse.translates = args.reuse;
     opt.regions = args.scene.regions;  // each facet's VALID boxes, before they are written
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
     opt.stop = signals.token();

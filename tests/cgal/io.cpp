@@ -475,6 +475,10 @@ TEST_CASE("summary.json: format and version lead, mount_offset round-trips, othe
     s.settings.position_eps = 0.1;
     s.settings.orientation_eps = 0.38;
     s.totals.seconds = 1.5;
+    certipose::facet_record own, reused;
+    own.index = 1, own.valid = 3;
+    reused.index = 2, reused.valid = 3, reused.reused_from = 1;
+    s.facets = {own, reused};
     const fs::path dir = scratch("summary") / "run";
     fs::create_directories(dir);
     const auto j = certipose::part_summary_to_json(s);
@@ -485,6 +489,13 @@ TEST_CASE("summary.json: format and version lead, mount_offset round-trips, othe
     const certipose::part_summary back = certipose::read_part_summary(dir);
     CHECK(back.camera == s.camera);
     CHECK(back.mesh == s.mesh);
+    // The reuse stage: on by default, and which facet's boxes a reused facet took.
+    CHECK(j["settings"]["reuse"] == true);
+    CHECK(!j["facets"][0].contains("reused_from"));
+    CHECK(j["facets"][1]["reused_from"] == 1);
+    REQUIRE(back.facets.size() == 2);
+    CHECK(!back.facets[0].reused_from);
+    CHECK(back.facets[1].reused_from == std::optional<std::size_t>(1));
 
     auto v2 = nlohmann::json::parse(j.dump());
     v2["version"] = 2;

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <set>
 
 using namespace solver_test;
 
@@ -29,6 +30,27 @@ part_options options_for(std::vector<std::size_t> facets, std::size_t threads) {
 std::vector<std::size_t> every(std::size_t step, std::size_t n, std::size_t first = 0) {
     std::vector<std::size_t> v;
     for (std::size_t f = first; f < n; f += step) v.push_back(f);
+    return v;
+}
+
+/// The volume of the distinct position boxes of the VALID boxes (stats.valid_volume's measure).
+double position_volume(const std::vector<classified_box<boost_interval>>& boxes) {
+    std::set<std::array<double, 6>> seen;
+    double v = 0;
+    for (const auto& b : boxes) {
+        if (b.cls != box_class::valid) continue;
+        const auto& p = b.box.position;
+        if (seen.insert({lower(p[0]), upper(p[0]), lower(p[1]), upper(p[1]), lower(p[2]), upper(p[2])}).second)
+            v += volume(p);
+    }
+    return v;
+}
+
+/// The 6D volume of the VALID boxes.
+double pose_volume(const std::vector<classified_box<boost_interval>>& boxes) {
+    double v = 0;
+    for (const auto& b : boxes)
+        if (b.cls == box_class::valid) v += volume(b.box.position) * volume(b.box.orientation);
     return v;
 }
 
@@ -67,10 +89,112 @@ TEST_CASE("part: the same facets, boxes and order with 1, 2 and 4 threads") {
             }
         }
     }
-    // The part run gives each facet exactly what the single-facet solver gives it.
-    const auto single = whole.solver().solve(facets[3], options_for({}, 1).facet);
-    CHECK(runs[2].outcomes[3].boxes.size() == single.boxes.size());
-    CHECK(runs[2].outcomes[3].record.valid == single.stats.valid);
+    // The part run gives each facet it paves on its own exactly what the single-facet solver
+    // gives it (a facet that took a translate's boxes has its record say so: see the reuse test).
+    std::size_t own = 0;
+    while (own < facets.size() && runs[2].outcomes[own].record.reused_from) ++own;
+    REQUIRE(own < facets.size());
+    const auto single = whole.solver().solve(facets[own], options_for({}, 1).facet);
+    CHECK(runs[2].outcomes[own].boxes.size() == single.boxes.size());
+    CHECK(runs[2].outcomes[own].record.valid == single.stats.valid);
+}
+
+TEST_CASE("part: translate groups: congruent facets group from any first vertex; mirrored and other shapes do not") {
+    // Four unit squares side by side, two triangles each; the last square lists its first
+    // triangle from another vertex and its second one mirrored (the other normal).
+    std::vector<Eigen::Vector3d> v;
+    std::vector<face_indices> faces;
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const double x = 0.25 * i, jitter = i == 2 ? 3e-12 : 0.0;  // within the grid's quantum
+        const auto a = static_cast<std::uint32_t>(v.size());
+        v.insert(v.end(), {Eigen::Vector3d(x, 0, 0), Eigen::Vector3d(x + 0.25, 0, 0), Eigen::Vector3d(x + 0.25, 0.25 + jitter, 0),
+                           Eigen::Vector3d(x, 0.25, 0)});
+        if (i < 3) {
+            faces.push_back({a, a + 1, a + 2});
+            faces.push_back({a, a + 2, a + 3});
+        } else {
+            faces.push_back({a + 1, a + 2, a});
+            faces.push_back({a, a + 3, a + 2});
+        }
+    }
+    v.insert(v.end(), {Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(2.5, 0, 0), Eigen::Vector3d(2.5, 0.25, 0)});
+    faces.push_back({16, 17, 18});  // another shape
+    const triangle_mesh m(v, faces);
+    const translate_groups g = translate_groups::of(m);
+    REQUIRE(g.group_of.size() == 9);
+    for (std::size_t f : {2, 4, 6}) CHECK(g.group_of[f] == g.group_of[0]);
+    CHECK(g.group_of[3] == g.group_of[1]);
+    CHECK(g.group_of[5] == g.group_of[1]);
+    CHECK(g.group_of[7] != g.group_of[1]);  // mirrored
+    CHECK(g.group_of[8] != g.group_of[0]);
+    CHECK(g.members[g.group_of[0]] == std::vector<std::size_t>{0, 2, 4, 6});
+    CHECK(g.shared_group(0) == g.group_of[0]);
+    CHECK(!g.shared_group(7));
+    CHECK(!g.shared_group(8));
+    CHECK(!g.shared_group(99));
+}
+
+TEST_CASE("part: reuse between translates: open facets take a translate's boxes, proven again, sound and as large") {
+    const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
+    const auto facets = every(11, part().mesh.num_faces(), 2);
+    collecting_sink<boost_interval> on, off;
+    auto o = options_for(facets, 2);
+    const auto r_on = whole.solve(o, on);
+    o.reuse.translates = false;
+    const auto r_off = whole.solve(o, off);
+    REQUIRE(on.outcomes.size() == facets.size());
+    REQUIRE(off.outcomes.size() == facets.size());
+    CHECK(r_off.reused == 0);
+    CHECK(r_on.reused > facets.size() / 4);  // the bottom and the outer walls
+    std::size_t reused = 0, checked = 0;
+    double six_on = 0, six_off = 0;
+    for (std::size_t i = 0; i < facets.size(); ++i) {
+        const auto& a = on.outcomes[i];
+        const auto& b = off.outcomes[i];
+        CAPTURE(facets[i]);
+        CHECK(!b.record.reused_from);
+        if (!a.record.reused_from) {  // paved on its own: what the run without reuse gives
+            CHECK(a.boxes.size() == b.boxes.size());
+            continue;
+        }
+        ++reused;
+        CHECK(*a.record.reused_from < a.record.index);  // the first open facet of its group
+        CHECK(a.record.valid == a.boxes.size());
+        // As large as its own paving: the same positions up to rounding; the orientations as
+        // its template's, which differ from its own as any two translates' pavings do.
+        const double pa = position_volume(a.boxes), pb = position_volume(b.boxes);
+        CHECK(pa == doctest::Approx(pb).epsilon(0.01));
+        six_on += pose_volume(a.boxes), six_off += pose_volume(b.boxes);
+        if (checked < 6 + (i % 2)) {  // sampled poses, box corners included, with ray casting
+            ++checked;
+            solve_result<boost_interval> as_result;
+            as_result.facet_index = a.record.index;
+            as_result.boxes = a.boxes;
+            as_result.stats.valid = a.record.valid;
+            const auto rep = check_valid_boxes(as_result, part().mesh, camera(), whole.solver().range(), 0.35, 1, 17 + i,
+                                               true, 120);
+            CHECK(rep.samples > 0);
+            CHECK(rep.violations == 0);
+        }
+    }
+    CHECK(reused == r_on.reused);
+    CHECK(checked >= 6);
+    CHECK(six_on == doctest::Approx(six_off).epsilon(0.03));
+    // A facet's boxes do not depend on the selection: alone, a reused facet gets the same.
+    std::size_t k = 0;
+    while (!on.outcomes[k].record.reused_from) ++k;
+    collecting_sink<boost_interval> alone;
+    o.reuse.translates = true;
+    o.facets = {facets[k]};
+    whole.solve(o, alone);
+    REQUIRE(alone.outcomes.size() == 1);
+    CHECK(alone.outcomes[0].record.reused_from == on.outcomes[k].record.reused_from);
+    REQUIRE(alone.outcomes[0].boxes.size() == on.outcomes[k].boxes.size());
+    for (std::size_t j = 0; j < alone.outcomes[0].boxes.size(); ++j)
+        for (std::size_t d = 0; d < 3; ++d) {
+            CHECK(lower(alone.outcomes[0].boxes[j].box.position[d]) == lower(on.outcomes[k].boxes[j].box.position[d]));
+            CHECK(upper(alone.outcomes[0].boxes[j].box.orientation[d]) == upper(on.outcomes[k].boxes[j].box.orientation[d]));
+        }
 }
 
 TEST_CASE("part: boxes stream to the sink; at most in_flight facets exist at once") {

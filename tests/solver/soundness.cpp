@@ -6,13 +6,16 @@
 // Modes: the paper's paving; the default; refinement that completes both of its passes (the
 // second starts from the first pass's states, with their shadows: the pass that once read a
 // freed shadow cache); refinement stopped by its time budget and by the box budget; growth;
-// refinement with growth; largest_box_around; and a plan's tolerance boxes (candidates cut to an
-// installation tolerance, their facets certified by inspect_boxes, as certipose-plan does).
+// refinement with growth; largest_box_around; a plan's tolerance boxes (candidates cut to an
+// installation tolerance, their facets certified by inspect_boxes, as certipose-plan does); and
+// a part run's reuse between translates (part/translates.hpp) in each paving mode, budgets and
+// keep options, where facets take a translate's boxes.
 #include "solver_support.hpp"
 
 #include <certipose/coverage/candidates.hpp>
 #include <certipose/coverage/inspect_boxes.hpp>
 #include <certipose/io/json.hpp>
+#include <certipose/part/part_solver.hpp>
 
 #include <array>
 #include <charconv>
@@ -256,6 +259,78 @@ TEST_CASE("soundness matrix: growth, and refinement with growth") {
     run_matrix("refinement with growth", [](const matrix_case& c, const auto&, const auto&) {
         return std::vector<solve_options>{refined_and_grown(c)};
     }, 601);
+}
+
+TEST_CASE("soundness matrix: a part run's reuse between translates, in every mode, completed and budget-stopped") {
+    // Facets of the sample part's bottom and outer walls: open (nothing in front of them), and
+    // translates of one another, so that most take their group's first facet's boxes.
+    const calibrated_camera cam = calibrated(thin_lens_camera(design_camera_parameters()));
+    const part_solver<with_camera<calibrated_camera>> whole(part().mesh, cam, {.min_view_angle = 0.35});
+    std::vector<std::size_t> facets;
+    for (std::size_t f = 2; f < part().mesh.num_faces() && facets.size() < 14; f += 37) facets.push_back(f);
+    // Whether facets must take a translate's boxes in a mode: boxes grown to the edge of what
+    // their proofs allow (growth) may not survive the move, and then their facets are paved
+    // alone; a template cut short by its budget is never reused.
+    enum class expect { reuse, alone, either };
+    struct mode {
+        const char* name;
+        part_options options;
+        expect reuse;
+    };
+    const auto with = [&](auto&& change) {
+        part_options o;
+        o.facet = {.position_eps = 0.1, .orientation_eps = 0.38};
+        o.facets = facets;
+        o.threads = 2;
+        change(o);
+        return o;
+    };
+    using namespace std::chrono_literals;
+    const std::vector<mode> modes{
+        {"default", with([](part_options&) {}), expect::reuse},
+        {"paper paving", with([](part_options& o) { o.facet.paving = paper_paving{}; }), expect::reuse},
+        {"refinement stopped by its budget", with([](part_options& o) { o.facet.refine = refinement{.time_limit = 300ms}; }),
+         expect::either},
+        {"growth", with([](part_options& o) { o.facet.grow = growth_options{}; }), expect::either},
+        {"refinement with growth", with([](part_options& o) {
+             o.facet.refine = refinement{.time_limit = 200ms};
+             o.facet.grow = growth_options{};
+         }), expect::either},
+        {"BOUNDARY kept, the 40 largest VALID boxes kept, a keep-in region",
+         with([](part_options& o) {
+             o.keep_boundary = true;
+             o.keep_largest = 40;
+             o.regions.keep_in.push_back(camera_region::sphere({0.0, 0.0, 0.0}, 0.6));
+         }),
+         expect::reuse},
+        // A template cut short by its box budget is not reused: its translates are paved alone.
+        {"per-facet box budget", with([](part_options& o) { o.facet.max_boxes = 300; }), expect::alone},
+        // The run's box budget stops it after some facets: those reported are as in a full run.
+        {"run box budget", with([](part_options& o) { o.max_boxes = 20000; }), expect::reuse},
+    };
+    for (const mode& m : modes) {
+        CAPTURE(m.name);
+        collecting_sink<I> sink;
+        const part_result r = whole.solve(m.options, sink);
+        REQUIRE(!sink.outcomes.empty());
+        if (m.reuse == expect::reuse) CHECK(r.reused > 0);
+        if (m.reuse == expect::alone) CHECK(r.reused == 0);
+        std::size_t boxes = 0, violations = 0, samples = 0;
+        for (const auto& out : sink.outcomes) {
+            if (out.record.valid == 0) continue;
+            solve_result<I> as_result;
+            as_result.facet_index = out.record.index;
+            as_result.boxes = out.boxes;
+            as_result.stats.valid = out.record.valid;
+            const auto rep = check_valid_boxes(as_result, part().mesh, cam, whole.solver().range(), 0.35, 1,
+                                               static_cast<std::uint32_t>(out.record.index), true, 60);
+            boxes += rep.valid_boxes, violations += rep.violations, samples += rep.samples;
+        }
+        MESSAGE("reuse | " << std::string(m.name) << ": " << sink.outcomes.size() << " facets, " << r.reused << " reused, " << boxes
+                           << " VALID boxes checked, " << samples << " poses, " << violations << " violations");
+        CHECK(boxes > 0);
+        CHECK(violations == 0);
+    }
 }
 
 TEST_CASE("soundness matrix: largest_box_around") {

@@ -12,10 +12,10 @@
 // "digest"}, "camera": {as in the single-facet result},
 // "task", "settings" (every option that changes the answer: ε_p, ε_o, budgets, occlusion,
 // "mesh_semantics", "paving" and carving's steps, "refine_seconds", "grow", "max_boxes",
-// "facets", "keep_largest", "box_store"), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
+// "facets", "keep_largest", "box_store", "reuse"), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
 // "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none),
 // "facets": [{"index", "valid", "boundary", "seconds", "termination",
-// "reason" (when skipped), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
+// "reason" (when skipped), "dropped", "reused_from" (part_options::reuse), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
 #pragma once
 
@@ -137,6 +137,7 @@ struct part_summary {
         std::optional<std::size_t> max_boxes{};  ///< the run's box budget
         std::string facets{};                    ///< the --facets selection as given; empty: all
         std::optional<std::size_t> keep_largest{};  ///< only the K largest VALID boxes per facet kept
+        bool reuse = true;  ///< open facets took a translate's boxes, proven again (part_options::reuse)
     };
     /// What the survey of a triangle soup found (occlusion/mesh_survey.hpp; written when the
     /// scene was read as one).
@@ -212,7 +213,8 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
                      {"max_boxes", s.settings.max_boxes ? ordered_json(*s.settings.max_boxes) : ordered_json(nullptr)},
                      {"facets", s.settings.facets.empty() ? ordered_json("all") : ordered_json(s.settings.facets)},
                      {"keep_largest", s.settings.keep_largest ? ordered_json(*s.settings.keep_largest) : ordered_json(nullptr)},
-                     {"box_store", s.settings.box_store}};
+                     {"box_store", s.settings.box_store},
+                     {"reuse", s.settings.reuse}};
     if (s.survey) {
         const auto& v = *s.survey;
         j["survey"] = {{"bodies", v.bodies},
@@ -237,6 +239,7 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
         r["termination"] = to_string(f.termination);
         if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
         if (f.dropped > 0) r["dropped"] = f.dropped;
+        if (f.reused_from) r["reused_from"] = *f.reused_from;
         if (f.boundary > 0) {
             ordered_json reasons;
             for (std::size_t k = 0; k < boundary_reason_count; ++k)
@@ -318,6 +321,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
         r.termination = *term;
         if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
         if (const json* dropped = find(f, "dropped")) r.dropped = as_count(*dropped, child(path, "dropped"));
+        if (const json* from = find(f, "reused_from")) r.reused_from = as_count(*from, child(path, "reused_from"));
         if (const json* reasons = find(f, "boundary_reasons")) {
             require_object(*reasons, child(path, "boundary_reasons"));
             for (std::size_t k = 0; k < boundary_reason_count; ++k)

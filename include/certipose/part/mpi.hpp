@@ -77,6 +77,7 @@ void encode(writer& w, const facet_outcome<I>& o) {
     w.bytes += r.reason;
     for (std::size_t k = 0; k < boundary_reason_count; ++k) w.put<std::uint64_t>(r.boundary_reasons[k]);
     w.put<std::uint64_t>(r.dropped);
+    w.put<std::uint64_t>(r.reused_from ? *r.reused_from + 1 : 0);  // 0: paved on its own
     w.put<std::uint64_t>(o.boxes.size());
     for (const auto& b : o.boxes) {
         w.put<std::uint8_t>(static_cast<std::uint8_t>(b.cls));
@@ -107,6 +108,7 @@ facet_outcome<I> decode(reader& rd) {
     rd.at += n;
     for (std::size_t k = 0; k < boundary_reason_count; ++k) r.boundary_reasons[k] = rd.get<std::uint64_t>();
     r.dropped = rd.get<std::uint64_t>();
+    if (const auto from = rd.get<std::uint64_t>()) r.reused_from = from - 1;
     const auto boxes = rd.get<std::uint64_t>();
     o.boxes.reserve(boxes);
     const rounding_guard<I> rounding;  // building intervals from exact bounds
@@ -254,6 +256,7 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
                 out.valid += o.record.valid;
                 out.boundary += o.record.boundary;
                 out.skipped += o.record.termination == facet_termination::skipped;
+                out.reused += o.record.reused_from.has_value();
                 out.facets.push_back(o.record);
                 boxes_total += o.record.valid + o.record.boundary;
                 if (options.max_boxes && boxes_total >= *options.max_boxes && out.facets.size() < selection.size())

@@ -19,6 +19,13 @@
 // buried in another body, covered by one, or repeats an earlier facet. These are certificates,
 // like OCCLUDED: a skipped facet would have had no VALID box (a duplicate has its original's).
 //
+// Reuse between translates (`part_options::reuse`, part/translates.hpp): a facet nothing can
+// occlude that is a translate of another such facet takes the boxes of its group's first one (by
+// index in the whole part), each VALID box proven again for it, instead of being paved. The
+// first one is solved once, by whichever worker needs it first, and its boxes are kept until the
+// group's last selected facet is done; the choice does not depend on the selection or the
+// threads, so neither do a facet's boxes.
+//
 // Camera regions (`part_options::regions`, solver/camera_regions.hpp): each facet's result is
 // restricted to the allowed camera positions in its worker, right after its solve, so the
 // record's counts, the sink's boxes and the run's totals are all of the restricted result.
@@ -38,8 +45,10 @@
 #include <concepts>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <span>
 #include <stop_token>
 #include <string>
@@ -53,6 +62,7 @@
 
 #include "certipose/error.hpp"
 #include "certipose/orientation/certify.hpp"
+#include "certipose/part/translates.hpp"
 #include "certipose/solver/camera_regions.hpp"
 #include "certipose/solver/keep_largest.hpp"
 #include "certipose/solver/pose_solver.hpp"
@@ -81,6 +91,9 @@ struct facet_record {
     facet_termination termination = facet_termination::completed;
     std::string reason;  ///< why it was skipped (empty otherwise)
     std::size_t dropped = 0;  ///< VALID boxes found but not kept (part_options::keep_largest)
+    /// The translate whose boxes this facet's are, proven again (part_options::reuse); nothing
+    /// when the facet was paved on its own.
+    std::optional<std::size_t> reused_from{};
     std::array<std::size_t, boundary_reason_count> boundary_reasons{};
 };
 
@@ -127,6 +140,9 @@ struct part_options {
     std::optional<std::size_t> keep_largest{};
     /// Skip facets provably uninspectable before paving them (see the header comment).
     bool skip_uninspectable = true;
+    /// The reuse stage: an open facet takes a translate's boxes, each proven again for it
+    /// (part/translates.hpp), instead of being paved (see the header comment).
+    reuse_options reuse{};
     /// Whole run: boxes processed (sum over facets, in facet order), wall time.
     std::optional<std::size_t> max_boxes{};
     std::optional<std::chrono::steady_clock::duration> time_limit{};
@@ -142,6 +158,7 @@ struct part_result {
     std::vector<facet_record> facets;
     std::size_t facets_selected = 0;
     std::size_t valid = 0, boundary = 0, skipped = 0;
+    std::size_t reused = 0;  ///< facets whose boxes are a translate's, proven again (part_options::reuse)
     double seconds = 0.0;
     std::size_t threads = 0;
     /// The most facets whose boxes existed at once (solving, or waiting for the sink): what
@@ -234,8 +251,46 @@ private:
         return set.initial_box();
     }
 
+    /// Facet `f` is open (part/translates.hpp): inspectable, and every sight line to it from a
+    /// position of `search_box(f)` in front of it is free — the occlusion policy's `front_clear`
+    /// when it has one, else its VISIBLE over the box. The box is returned (nothing otherwise).
+    std::optional<position_box<interval_type>> open_box(std::size_t f) const;
+
+    /// The part's translate groups, built by the first run that reuses (copies share them).
+    const translate_groups& groups() const {
+        std::call_once(groups_->once, [&] { groups_->groups = translate_groups::of(solver_.part()); });
+        return groups_->groups;
+    }
+
     solver_type solver_;
+    struct lazy_groups {
+        std::once_flag once;
+        translate_groups groups;
+    };
+    std::shared_ptr<lazy_groups> groups_ = std::make_shared<lazy_groups>();
 };
+
+template <class Policies>
+auto part_solver<Policies>::open_box(std::size_t f) const -> std::optional<position_box<interval_type>> {
+    using I = interval_type;
+    if (uninspectable(f)) return std::nullopt;
+    position_box<I> box = search_box(f);
+    if (is_empty(box)) return std::nullopt;
+    using O = typename solver_type::occlusion_type;
+    if constexpr (requires(const O& o) {
+                      { o.front_clear(box, f) } -> std::same_as<bool>;
+                  }) {
+        if (!solver_.occlusion().front_clear(box, f)) return std::nullopt;
+    } else if constexpr (checks_occlusion<O>) {
+        visibility seen;
+        if constexpr (EffortAwareOcclusionPolicy<O, I>)
+            seen = solver_.occlusion().classify(box, f, occlusion_effort::visible_only);
+        else
+            seen = solver_.occlusion().classify(box, f);
+        if (seen != visibility::visible) return std::nullopt;
+    }
+    return box;
+}
 
 template <class Policies>
 std::optional<std::string> part_solver<Policies>::uninspectable(std::size_t index) const {
@@ -295,6 +350,7 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
     using clock = std::chrono::steady_clock;
     options.facet.validate();
     options.regions.validate();
+    options.reuse.validate();
     const std::size_t n = solver_.part().num_faces();
     std::vector<std::size_t> selection = options.facets;
     if (selection.empty()) {
@@ -357,6 +413,99 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
         ~sync_on_exit() { f(); }
     };
 
+    // The reuse stage (part/translates.hpp). Per group of translates: its template, the first
+    // open member by index in the whole part (found once, by whichever worker asks first), and
+    // the template's result, solved once and kept until every selected member of the group is
+    // done. Without a translate group, or with a placement tolerance (whose proofs are per
+    // placement, placement_stage.hpp), every facet is paved on its own.
+    struct template_slot {
+        std::once_flag found, solved;
+        std::optional<std::size_t> facet;  ///< the template (nothing: no member is open)
+        std::optional<solve_result<I>> result;
+        std::atomic<std::size_t> users{0};  ///< selected members not done yet
+    };
+    const bool reusing = options.reuse.translates && solver_.placement_proofs() == nullptr;
+    const translate_groups* groups_of = reusing ? &groups() : nullptr;
+    std::vector<std::unique_ptr<template_slot>> slots;
+    if (groups_of) {
+        slots.resize(groups_of->members.size());
+        for (std::size_t f : selection)
+            if (const auto g = groups_of->shared_group(f)) {
+                if (!slots[*g]) slots[*g] = std::make_unique<template_slot>();
+                ++slots[*g]->users;
+            }
+    }
+    // What one proof of constraint 5 may take: the orientation policy's own budget when it has
+    // one (so that what it proved can be proven again), else paper_orientation's default.
+    const std::size_t tiling_budget = [&]() -> std::size_t {
+        if constexpr (requires { solver_.orientation().options().tiling_budget; })
+            return solver_.orientation().options().tiling_budget;
+        else
+            return paper_orientation_options{}.tiling_budget;
+    }();
+    // Facet f's boxes as a translate's, proven again; nothing when it has no open translate, or
+    // the template's boxes not proven for f hold more than reuse.max_loss of its VALID volume.
+    // `fo` solves the template when f asks first.
+    const auto reuse_for = [&](std::size_t f, const solve_options& fo,
+                               std::optional<std::size_t>& from_facet) -> std::optional<solve_result<I>> {
+        const auto g = groups_of ? groups_of->shared_group(f) : std::nullopt;
+        if (!g) return std::nullopt;
+        template_slot& slot = *slots[*g];
+        std::call_once(slot.found, [&] {
+            for (std::size_t m : groups_of->members[*g])
+                if (open_box(m)) {
+                    slot.facet = m;
+                    return;
+                }
+        });
+        if (!slot.facet) return std::nullopt;
+        const std::size_t t = *slot.facet;
+        std::optional<position_box<I>> search;
+        if (t != f && !(search = open_box(f))) return std::nullopt;
+        std::call_once(slot.solved, [&] {
+            slot.result = solver_.solve(t, fo);
+            if (!options.keep_boundary)  // BOUNDARY boxes are only counted: the stats keep them
+                std::erase_if(slot.result->boxes, [](const classified_box<I>& b) { return b.cls != box_class::valid; });
+        });
+        const solve_result<I>& from = *slot.result;
+        if (t == f) return from;
+        if (from.stats.reason != termination::completed) return std::nullopt;
+        const auto t0 = clock::now();
+        const facet& target = solver_.part().facet(f);
+        auto set = make_constraint_set<typename solver_type::constraint_set_type>(
+            position_problem{target, solver_.range(), solver_.task()}, solver_.constraints());
+        auto moved = certify_translated<decltype(set), I>(set, *search, target, fov_frustum<I>(solver_.camera()), from.boxes,
+                                                         target.centroid - solver_.part().facet(t).centroid,
+                                                         options.keep_boundary, tiling_budget, options.reuse.max_loss);
+        if (!moved) return std::nullopt;
+        solve_result<I> r;
+        r.facet_index = f;
+        r.stats = from.stats;
+        r.stats.valid = moved->valid;
+        r.stats.boundary += moved->unproven;
+        for (std::size_t k = 0; k < boundary_reason_count; ++k) r.stats.boundary_reasons[k] += moved->unproven_reasons[k];
+        r.boxes = std::move(moved->boxes);
+        if (moved->unproven > 0) {  // the positions the unproven boxes held alone are no longer certified
+            std::set<std::array<double, 6>> seen;
+            r.stats.valid_volume = 0;
+            for (const auto& b : r.boxes) {
+                const auto& p = b.box.position;
+                if (b.cls == box_class::valid &&
+                    seen.insert({lower(p[0]), upper(p[0]), lower(p[1]), upper(p[1]), lower(p[2]), upper(p[2])}).second)
+                    r.stats.valid_volume += volume(p);
+            }
+        }
+        r.stats.seconds = std::chrono::duration<double>(clock::now() - t0).count();
+        from_facet = t;
+        return r;
+    };
+    const auto done_with_group = [&](std::size_t f) {
+        const auto g = groups_of ? groups_of->shared_group(f) : std::nullopt;
+        if (!g) return;
+        template_slot& slot = *slots[*g];
+        if (--slot.users == 0) slot.result.reset();  // the group's last selected member is done
+    };
+
     // One facet, in a worker: skipped, solved, or dropped when the run ends while it is in flight.
     const auto solve_one = [&](std::size_t f) {
         enter();
@@ -365,6 +514,11 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
         facet_record& rec = it.outcome.record;
         rec.index = f;
         const auto t0 = clock::now();
+        struct group_done_t {
+            const decltype(done_with_group)& done;
+            std::size_t f;
+            ~group_done_t() { done(f); }
+        } group_done{done_with_group, f};
         if (halt.stop_requested()) {
             it.dropped = true;
             return it;
@@ -384,7 +538,10 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
             const auto left = *deadline - clock::now();
             if (!fo.time_limit || left < *fo.time_limit) fo.time_limit = std::max(left, clock::duration(1));
         }
-        auto r = solver_.solve(f, fo);
+        std::optional<std::size_t> from;  // the translate f's boxes came from
+        std::optional<solve_result<I>> reused = reuse_for(f, fo, from);
+        auto r = reused ? std::move(*reused) : solver_.solve(f, fo);
+        rec.reused_from = from;
         // Cut short by the run (its stop, or its deadline rather than the facet's
         // own): dropped, never reported half done.
         if (r.stats.reason == termination::cancelled ||
@@ -448,6 +605,7 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
                     out.valid += rec.valid;
                     out.boundary += rec.boundary;
                     out.skipped += rec.termination == facet_termination::skipped;
+                    out.reused += rec.reused_from.has_value();
                     out.facets.push_back(rec);
                     boxes_total += rec.valid + rec.boundary;
                     if (options.max_boxes && boxes_total >= *options.max_boxes &&
