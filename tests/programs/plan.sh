@@ -8,6 +8,7 @@
 # --all-candidates, and certipose-verify certifies the plan's boxes and
 # the tolerance of an exact pose, and the same facets from the pose given as a quaternion or a 4x4
 # matrix; every JSON written leads with its format and version; another mount offset is refused.
+# certipose-part's reuse between translates is on by default and off with --no-reuse.
 set -uo pipefail
 part=$1 plan=$2 verify=$3 mesh=$4 camera=$5 work=$6
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
@@ -15,6 +16,17 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 880-920 \
     --out run --quiet || fail "certipose-part failed"
+
+# Reuse between translates (docs/part.md#reuse-between-translates): bottom facets of one shape
+# take the first one's boxes, recorded in summary.json; --no-reuse paves each on its own.
+"$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 2,6,10,14 \
+    --out reuse --quiet || fail "certipose-part on bottom facets failed"
+[ "$(grep -o '"reused_from": *2' reuse/summary.json | wc -l)" -eq 3 ] || fail "facets 6, 10, 14 did not reuse facet 2's boxes"
+grep -q '"reuse": *true' reuse/summary.json || fail "settings.reuse is not true"
+"$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 2,6,10,14 \
+    --out alone --quiet --no-reuse || fail "certipose-part --no-reuse failed"
+grep -q '"reused_from"' alone/summary.json && fail "--no-reuse reused boxes"
+grep -q '"reuse": *false' alone/summary.json || fail "settings.reuse is not false with --no-reuse"
 
 "$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --out plan.json --ply plan.ply >out 2>err \
     || fail "certipose-plan failed: $(cat err)"

@@ -180,6 +180,18 @@ TEST_CASE("part: reuse between translates: open facets take a translate's boxes,
     CHECK(reused == r_on.reused);
     CHECK(checked >= 6);
     CHECK(six_on == doctest::Approx(six_off).epsilon(0.03));
+    // A bad share is an error naming it.
+    auto bad = o;
+    bad.reuse.max_loss = 1.5;
+    collecting_sink<boost_interval> none;
+    try {
+        whole.solve(bad, none);
+        FAIL("no throw");
+    } catch (const invalid_argument& e) {
+        CHECK(e.field() == "reuse.max_loss");
+        CHECK(std::string(e.what()).find("1.5") != std::string::npos);
+    }
+    CHECK(none.outcomes.empty());
     // A facet's boxes do not depend on the selection: alone, a reused facet gets the same.
     std::size_t k = 0;
     while (!on.outcomes[k].record.reused_from) ++k;
