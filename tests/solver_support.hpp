@@ -94,6 +94,17 @@ std::vector<const classified_box<I>*> valid_boxes_of(const solve_result<I>& r, s
     return chosen;
 }
 
+/// A facet of a part run (its index, its boxes and its VALID count) as a solve_result, for
+/// check_valid_boxes.
+template <class I>
+solve_result<I> as_result(std::size_t facet, const std::vector<classified_box<I>>& boxes, std::size_t valid) {
+    solve_result<I> r;
+    r.facet_index = facet;
+    r.boxes = boxes;
+    r.stats.valid = valid;
+    return r;
+}
+
 /// Samples `per_box` random poses in every VALID box, and its 64 corners, and checks them
 /// against everything, all exactly: carved boxes touch a constraint boundary, and their corners
 /// lie on it or within rounding of it, where only exact arithmetic tells a violation of a few

@@ -283,22 +283,24 @@ class Solver:
                   facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
                   time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
                   corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+                  reuse: bool = True,
                   progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> "PartIterator":
         """The facets of a whole-part run, each as it finishes, in facet order (what certipose-part
         computes with the same options). See solve_part for the options."""
         return PartIterator(self._start(False, position_eps, orientation_eps, facets, threads, boundary, keep_largest,
                                         max_boxes_per_facet, facet_time_limit, max_boxes, time_limit, paper_paving,
-                                        corner_depth, corner_rest, refine, grow, progress))
+                                        corner_depth, corner_rest, refine, grow, reuse, progress))
 
     def _start(self, collect, position_eps, orientation_eps, facets, threads, boundary, keep_largest, max_boxes_per_facet,
-               facet_time_limit, max_boxes, time_limit, paper_paving, corner_depth, corner_rest, refine, grow, progress):
+               facet_time_limit, max_boxes, time_limit, paper_paving, corner_depth, corner_rest, refine, grow, reuse,
+               progress):
         s = _settings(position_eps, orientation_eps, max_boxes_per_facet, facet_time_limit, paper_paving, corner_depth,
                       corner_rest, refine, grow)
         cb = None if progress is None else (lambda d: progress(Progress(**d)))
         return self._core.start_part(s, _facet_selection(facets), _count("threads", threads, 0), bool(boundary),
                                      None if keep_largest is None else _count("keep_largest", keep_largest),
-                                     None if max_boxes is None else _count("max_boxes", max_boxes), time_limit, cb,
-                                     collect)
+                                     None if max_boxes is None else _count("max_boxes", max_boxes), time_limit,
+                                     bool(reuse), cb, collect)
 
     def solve_part(self, *, position_eps: float = 0.1, orientation_eps: float = 0.38,
                    facets: Union[None, str, Sequence[int]] = None, threads: int = 0, boundary: bool = False,
@@ -306,18 +308,21 @@ class Solver:
                    facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
                    time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
                    corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+                   reuse: bool = True,
                    progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> PartResult:
         """Certified pose boxes of every facet (or of ``facets``: a list or "0,5,17-30"), on
         ``threads`` threads (0: every core), as certipose-part computes them with the same
         options; ``boundary`` keeps BOUNDARY boxes too, ``keep_largest`` the K largest VALID
         boxes per facet; ``max_boxes_per_facet`` / ``facet_time_limit`` budget each facet,
-        ``max_boxes`` / ``time_limit`` the whole run. ``progress(Progress)`` is called after
+        ``max_boxes`` / ``time_limit`` the whole run; ``reuse=False`` paves every facet on its own
+        (by default a facet nothing can occlude takes a translate's boxes, each proven again, and
+        its record's ``reused_from`` names that facet). ``progress(Progress)`` is called after
         facets finish, on the calling thread; returning False cancels the run (the facets
         finished are returned, ``termination`` "cancelled"). Ctrl-C (KeyboardInterrupt) stops
         the run and is raised."""
         run = self._start(True, position_eps, orientation_eps, facets, threads, boundary, keep_largest,
                           max_boxes_per_facet, facet_time_limit, max_boxes, time_limit, paper_paving, corner_depth,
-                          corner_rest, refine, grow, progress)
+                          corner_rest, refine, grow, reuse, progress)
         facets_of_boxes, bounds, classes, reasons = run.collect()
         summary = run.summary
         summary["run"] = _json.loads(_core.run_record(self._core))  # what plan() compares with

@@ -151,6 +151,7 @@ class Solver:
                   facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
                   time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
                   corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+                  reuse: bool = True,
                   progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> PartIterator: ...
     def solve_part(self, *, position_eps: float = 0.1, orientation_eps: float = 0.38,
                    facets: Union[None, str, Sequence[int]] = None, threads: int = 0, boundary: bool = False,
@@ -158,6 +159,7 @@ class Solver:
                    facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
                    time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
                    corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+                   reuse: bool = True,
                    progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> PartResult: ...
     def inspect(self, bounds: npt.ArrayLike, *, threads: int = 0, possible: bool = True) -> list[Coverage]: ...
     def plan(self, part: Union[PartResult, _Path], *, cameras: Optional[int] = None, coverage: Optional[float] = None,

@@ -331,7 +331,9 @@ py::dict record_dict(const cp::facet_record& r) {
             reasons[py::str(std::string(cp::to_string(static_cast<cp::boundary_reason>(k))))] = r.boundary_reasons[k];
     return py::dict(py::arg("index") = r.index, py::arg("valid") = r.valid, py::arg("boundary") = r.boundary,
                     py::arg("seconds") = r.seconds, py::arg("termination") = cp::to_string(r.termination),
-                    py::arg("reason") = r.reason, py::arg("dropped") = r.dropped, py::arg("boundary_reasons") = reasons);
+                    py::arg("reason") = r.reason, py::arg("dropped") = r.dropped,
+                    py::arg("reused_from") = r.reused_from ? py::object(py::int_(*r.reused_from)) : py::object(py::none()),
+                    py::arg("boundary_reasons") = reasons);
 }
 
 /// One facet's answer: the arrays, and either the solver's stats (solve_facet) or the part
@@ -543,7 +545,8 @@ public:
         for (const auto& f : r.facets) records.append(record_dict(f));
         return py::dict(py::arg("facets") = records, py::arg("facets_selected") = r.facets_selected, py::arg("valid") = r.valid,
                         py::arg("boundary") = r.boundary, py::arg("skipped") = r.skipped, py::arg("seconds") = r.seconds,
-                        py::arg("threads") = r.threads, py::arg("termination") = cp::to_string(r.reason));
+                        py::arg("threads") = r.threads, py::arg("reused") = r.reused,
+                        py::arg("termination") = cp::to_string(r.reason));
     }
 
 private:
@@ -640,7 +643,7 @@ private:
 std::unique_ptr<part_run> start_part(std::shared_ptr<solver> s, const facet_settings& fs, std::optional<std::string> facets,
                                      std::size_t threads, bool boundary, std::optional<std::size_t> keep_largest,
                                      std::optional<std::size_t> max_boxes_total, std::optional<double> time_limit_total,
-                                     py::object progress, bool collect) {
+                                     bool reuse, py::object progress, bool collect) {
     cp::part_options opt;
     opt.facet = solve_options_of(fs, s->shadowing());
     if (facets) opt.facets = cp::parse_facet_selection(*facets, s->mesh().num_faces());
@@ -648,6 +651,7 @@ std::unique_ptr<part_run> start_part(std::shared_ptr<solver> s, const facet_sett
     opt.keep_boundary = boundary;
     opt.keep_largest = keep_largest;
     opt.max_boxes = max_boxes_total;
+    opt.reuse.translates = reuse;
     if (time_limit_total) opt.time_limit = seconds(*time_limit_total, "time_limit");
     opt.regions = s->scene().regions;  // each facet's VALID boxes, before the sink sees them (as certipose-part)
     return std::make_unique<part_run>(std::move(s), std::move(opt), std::move(progress), collect);
@@ -1111,7 +1115,8 @@ PYBIND11_MODULE(_core, m) {
         .def("solve_facet", &solver::solve_facet, py::arg("facet"), py::arg("settings"))
         .def("start_part", &start_part, py::arg("settings"), py::arg("facets") = py::none(), py::arg("threads") = 0,
              py::arg("boundary") = false, py::arg("keep_largest") = py::none(), py::arg("max_boxes") = py::none(),
-             py::arg("time_limit") = py::none(), py::arg("progress") = py::none(), py::arg("collect") = false)
+             py::arg("time_limit") = py::none(), py::arg("reuse") = true, py::arg("progress") = py::none(),
+             py::arg("collect") = false)
         .def("inspect", &inspect, py::arg("bounds"), py::arg("threads") = 0, py::arg("possible") = true);
 
     py::class_<plan_holder>(m, "PlanDocument")

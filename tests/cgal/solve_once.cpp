@@ -6,6 +6,7 @@
 #include "solver_support.hpp"
 
 #include <certipose/io/json.hpp>
+#include <certipose/part/part_solver.hpp>
 
 #include <chrono>
 #include <string>
@@ -105,4 +106,37 @@ TEST_CASE("a dirty mesh read as a triangle soup, sanitized: the survey, skipped 
                         CHECK_FALSE(dirty_test::inside_closed_body(c));
         }
     MESSAGE("dirty mesh, sanitized: " << checked << " VALID boxes checked");
+}
+
+TEST_CASE("reuse between translates in a part run, sanitized: completed and stopped by the run's box budget") {
+    // Four bottom facets of the sample part, one shape and nothing in front of them: the first
+    // is paved, the others take its boxes, each proven again (part/translates.hpp); then the
+    // same run stopped by its box budget after the third facet. Every VALID box is checked.
+    const thin_lens_camera camera(design_camera_parameters());
+    const part_solver<> whole(part().mesh, camera, {.min_view_angle = 0.35});
+    for (const std::optional<std::size_t> budget : {std::optional<std::size_t>{}, std::optional<std::size_t>{10000}}) {
+        CAPTURE(budget.has_value());
+        part_options o;
+        o.facet = {.position_eps = 0.1, .orientation_eps = 0.38};
+        o.facets = {2, 6, 10, 14};
+        o.threads = 2;
+        o.keep_boundary = true;
+        o.max_boxes = budget;
+        collecting_sink<boost_interval> sink;
+        const part_result r = whole.solve(o, sink);
+        CHECK(r.reused == (budget ? 2u : 3u));
+        CHECK(sink.outcomes.size() == (budget ? 3u : 4u));
+        std::size_t checked = 0;
+        for (const auto& out : sink.outcomes) {
+            CAPTURE(out.record.index);
+            CHECK(out.record.reused_from == (out.record.index == 2 ? std::nullopt : std::optional<std::size_t>(2)));
+            const auto rep = check_valid_boxes(as_result(out.record.index, out.boxes, out.record.valid), part().mesh,
+                                               camera, whole.solver().range(), 0.35, 1,
+                                               static_cast<std::uint32_t>(out.record.index), true, 25);
+            CHECK(rep.valid_boxes > 0);
+            CHECK(rep.violations == 0);
+            checked += rep.valid_boxes;
+        }
+        MESSAGE("reuse, sanitized: " << checked << " VALID boxes checked");
+    }
 }

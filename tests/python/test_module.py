@@ -212,6 +212,22 @@ def test_valid_boxes_hold_in_every_mode(solver, program_part, mode):
         assert any(r["termination"] == "box_budget" for r in run.records)
 
 
+def test_reused_facets_say_where_from_and_hold():
+    # Bottom facets of the sample part, one shape (docs/part.md#reuse-between-translates): the
+    # first is paved, the others take its boxes, each proven again; reuse=False paves each alone.
+    sample = certipose.Solver(SAMPLE, str(ROOT / "examples" / "data" / "camera.json"))
+    facets = [2, 6, 10, 14]
+    run = sample.solve_part(facets=facets, threads=2, **EPS)
+    alone = sample.solve_part(facets=facets, threads=2, reuse=False, **EPS)
+    assert [r["reused_from"] for r in run.records] == [None, 2, 2, 2]
+    assert [r["reused_from"] for r in alone.records] == [None] * 4
+    assert run.summary["reused"] == 3 and alone.summary["reused"] == 0
+    assert all(r["valid"] > 0 for r in run.records)
+    check = Checker(run.summary["run"], sample.mesh)
+    checked, poses = check_sampled_poses(check, run, 40)
+    assert checked == 4 and poses > 4 * 40 * 64
+
+
 def test_the_sampling_check_catches_wrong_boxes(part, program_part):
     check = Checker(json.loads((program_part / "summary.json").read_text()), part_solver_mesh())
     f = int(part.facets[part.valid][0])

@@ -167,12 +167,8 @@ TEST_CASE("part: reuse between translates: open facets take a translate's boxes,
         six_on += pose_volume(a.boxes), six_off += pose_volume(b.boxes);
         if (checked < 6 + (i % 2)) {  // sampled poses, box corners included, with ray casting
             ++checked;
-            solve_result<boost_interval> as_result;
-            as_result.facet_index = a.record.index;
-            as_result.boxes = a.boxes;
-            as_result.stats.valid = a.record.valid;
-            const auto rep = check_valid_boxes(as_result, part().mesh, camera(), whole.solver().range(), 0.35, 1, 17 + i,
-                                               true, 120);
+            const auto rep = check_valid_boxes(as_result(a.record.index, a.boxes, a.record.valid), part().mesh, camera(),
+                                               whole.solver().range(), 0.35, 1, 17 + i, true, 120);
             CHECK(rep.samples > 0);
             CHECK(rep.violations == 0);
         }
@@ -315,11 +311,8 @@ TEST_CASE("part: a facet that hits its budget keeps its certified VALID boxes, a
         ++budget_hits;
         CHECK(out.record.valid > 0);
         CHECK(out.record.boundary_reasons[static_cast<std::size_t>(boundary_reason::budget)] > 0);
-        solve_result<boost_interval> as_result;
-        as_result.facet_index = out.record.index;
-        as_result.boxes = out.boxes;
-        as_result.stats.valid = out.record.valid;
-        const auto rep = check_valid_boxes(as_result, part().mesh, camera(), whole.solver().range(), 0.35, 20, 31);
+        const auto rep = check_valid_boxes(as_result(out.record.index, out.boxes, out.record.valid), part().mesh,
+                                           camera(), whole.solver().range(), 0.35, 20, 31);
         CHECK(rep.samples >= 20 * out.record.valid);
         CHECK(rep.violations == 0);
     }

@@ -318,11 +318,8 @@ TEST_CASE("soundness matrix: a part run's reuse between translates, in every mod
         std::size_t boxes = 0, violations = 0, samples = 0;
         for (const auto& out : sink.outcomes) {
             if (out.record.valid == 0) continue;
-            solve_result<I> as_result;
-            as_result.facet_index = out.record.index;
-            as_result.boxes = out.boxes;
-            as_result.stats.valid = out.record.valid;
-            const auto rep = check_valid_boxes(as_result, part().mesh, cam, whole.solver().range(), 0.35, 1,
+            const auto rep = check_valid_boxes(as_result(out.record.index, out.boxes, out.record.valid), part().mesh,
+                                               cam, whole.solver().range(), 0.35, 1,
                                                static_cast<std::uint32_t>(out.record.index), true, 60);
             boxes += rep.valid_boxes, violations += rep.violations, samples += rep.samples;
         }
