@@ -231,8 +231,7 @@ std::optional<translated_boxes<I>> certify_translated(Set& set, const position_b
     std::size_t certifications = 0;
     const auto prove = [&](auto& self, std::span<std::size_t> members) -> void {
         position_box<I> h = out[members.front()].box.position;
-        for (std::size_t i : members)
-            for (std::size_t d = 0; d < 3; ++d) h[d] = certipose::hull(h[d], out[i].box.position[d]);
+        for (std::size_t i : members) h = hull(h, out[i].box.position);
         if (certify_fov_tiled(fov_position<I>(h, f), out[members.front()].box.orientation, frustum, tiling_budget,
                               certifications))
             return;
@@ -240,9 +239,7 @@ std::optional<translated_boxes<I>> certify_translated(Set& set, const position_b
             failed[members.front()] = fail_code(boundary_reason::field_of_view);
             return;
         }
-        std::size_t k = 0;
-        for (std::size_t d = 1; d < 3; ++d)
-            if (width(h[d]) > width(h[k])) k = d;
+        const std::size_t k = widest_dimension(h);
         const auto half = members.begin() + static_cast<std::ptrdiff_t>(members.size() / 2);
         std::nth_element(members.begin(), half, members.end(), [&](std::size_t a, std::size_t b) {
             return mid(out[a].box.position[k]) < mid(out[b].box.position[k]);
