@@ -273,7 +273,9 @@ private:
 template <class Policies>
 auto part_solver<Policies>::open_box(std::size_t f) const -> std::optional<position_box<interval_type>> {
     using I = interval_type;
-    if (uninspectable(f)) return std::nullopt;
+    // The search box and front_clear first: a template's group is scanned in index order until
+    // a member is open, and most members of most groups are not, while uninspectable searches a
+    // full-effort OCCLUDED proof over the whole search box; it is asked only of open facets.
     position_box<I> box = search_box(f);
     if (is_empty(box)) return std::nullopt;
     using O = typename solver_type::occlusion_type;
@@ -289,6 +291,7 @@ auto part_solver<Policies>::open_box(std::size_t f) const -> std::optional<posit
             seen = solver_.occlusion().classify(box, f);
         if (seen != visibility::visible) return std::nullopt;
     }
+    if (uninspectable(f)) return std::nullopt;
     return box;
 }
 
