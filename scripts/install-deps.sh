@@ -10,7 +10,9 @@ packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev li
           chromium python3-numpy python3-pytest
           pybind11-dev python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-matplotlib)
 # Node.js bundles the web viewer (certipose-export --format html) and runs its tests; a machine
-# that has no `node` gets Debian's.
+# that has no `node` gets Debian's (18 on Debian 12). The lockfile is pinned to versions whose
+# `engines` Debian's Node.js meets; the check after the install refuses an older `node`.
+web="$(dirname "$0")/../web"
 command -v node >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
@@ -25,9 +27,22 @@ else
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+# The oldest Node.js every locked package accepts: the largest "node": ">=N" in the lockfile.
+need_node=$(grep -o '"node": *">= *[0-9]*' "$web/package-lock.json" | grep -o '[0-9]*$' | sort -n | tail -1)
+have_node=$(node -p 'process.versions.node' 2>/dev/null || echo none)
+if [ "${have_node%%.*}" = none ] || [ "${have_node%%.*}" -lt "${need_node:-0}" ]; then
+  echo "install-deps: web/package-lock.json needs Node.js >= ${need_node}, but \`node\` is ${have_node}" \
+       "($(command -v node || echo 'not on PATH')). Remove that node so that Debian's nodejs is installed," \
+       "or put Node.js >= ${need_node} first on PATH, then run this again." >&2
+  exit 1
+fi
+command -v npm >/dev/null || {
+  echo "install-deps: Node.js ${have_node} has no \`npm\`: install the npm of that Node.js" \
+       "(Debian's nodejs needs the package npm), then run this again." >&2
+  exit 1
+}
 # The web viewer's JavaScript (three.js, esbuild, gltf-validator, playwright-core), exactly as the
 # lockfile pins it; again only when web/node_modules is missing or older than the lockfile.
-web="$(dirname "$0")/../web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
   echo "install-deps: npm ci in web/"
   (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
