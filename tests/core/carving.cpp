@@ -14,7 +14,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 using I = certipose::boost_interval;
@@ -289,4 +292,42 @@ TEST_CASE("dropping contained boxes keeps what comparing every pair keeps") {
     std::sort(got.begin(), got.end());
     std::sort(want.begin(), want.end());
     CHECK(got == want);
+}
+
+template <class C>
+concept clearable = requires(C& c) { c.clear(); };
+
+TEST_CASE("shadow cache: keyed by facet and triangle, append-only, its references stable") {
+    using cache = certipose::detail::shadow_cache<I>;
+    static_assert(!std::is_copy_constructible_v<cache> && !std::is_copy_assignable_v<cache>);
+    static_assert(!std::is_move_constructible_v<cache> && !std::is_move_assignable_v<cache>);
+    static_assert(!clearable<cache>);  // states point into it: nothing may forget a shadow
+    // One plane each, its point a the facet's index: the same triangle's shadow for two facets
+    // must be two shadows.
+    const auto shadow_of = [](std::size_t facet) {
+        certipose::occlusion_shadow s;
+        s.count = 1;
+        const double a = static_cast<double>(facet);
+        s.planes[0].points = {Eigen::Vector3d(a, 0, 0), Eigen::Vector3d(a, 1, 0), Eigen::Vector3d(a, 0, 1)};
+        s.planes[0].sign = 1;
+        return s;
+    };
+    cache c;
+    int made = 0;
+    const auto get = [&](std::size_t facet, std::size_t triangle) -> const certipose::detail::prepared_shadow<I>& {
+        return c.get(facet, triangle, [&] { return ++made, shadow_of(facet); });
+    };
+    const auto* first = &get(3, 7);
+    CHECK(&get(4, 7) != first);  // the same triangle for another facet: its own shadow
+    CHECK(made == 2);
+    CHECK(&get(3, 7) == first);  // built once
+    CHECK(made == 2);
+    // A facet index past 2^32 is not folded onto a small one (the old key packed both in 64 bits).
+    CHECK(&get((std::size_t{1} << 32) + 3, 7) != first);
+    for (std::size_t t = 0; t < 5000; ++t) (void)get(3, 100 + t);  // rehashes: the first reference stays valid
+    CHECK(&get(3, 7) == first);
+    CHECK(c.size() == 5003);
+    // The planes' right-hand sides tell the facets apart: n·a with n = (1, 0, 0)... up to sign.
+    CHECK(std::abs(upper(first->planes[0].rhs)) == doctest::Approx(3.0));
+    CHECK(std::abs(upper(get(4, 7).planes[0].rhs)) == doctest::Approx(4.0));
 }

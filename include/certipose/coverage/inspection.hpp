@@ -266,8 +266,10 @@ private:
                 return decision::possible;
             }
         }
-        if (cache_.size() > max_cached_shadows) cache_.clear();  // bounded memory over many boxes
-        if (!detail::prove_visible(solver_->occlusion(), in_part, f, cache_)) return decision::possible;
+        // Bounded memory over many boxes: a new cache, since the shadow cache is append-only
+        // (nothing here points into the old one past a single proof).
+        if (cache_->size() > max_cached_shadows) cache_ = std::make_unique<detail::shadow_cache<interval_type>>();
+        if (!detail::prove_visible(solver_->occlusion(), in_part, f, *cache_)) return decision::possible;
         if (moving && !sight_region_clear(box.position, target.v, target.normal, reach, moving->fixed))
             return decision::possible;
         return decision::certified;
@@ -309,7 +311,7 @@ private:
     std::vector<double> areas_, radius_;
     double corner_angle_ = 0;
     static constexpr std::size_t max_cached_shadows = std::size_t{1} << 16;
-    detail::shadow_cache<interval_type> cache_;
+    std::unique_ptr<detail::shadow_cache<interval_type>> cache_ = std::make_unique<detail::shadow_cache<interval_type>>();
     std::size_t sight_hint_ = std::numeric_limits<std::size_t>::max();  // no triangle yet
     detail::orientation::angle_trig trig_;  // sines and cosines of the last box's angles (a cache by value)
     inspection_stats stats_;

@@ -52,7 +52,7 @@ verdict prove_position_set(Set& set, const position_box<I>& p) {
 
 /// Constraint 6 over a position box: the occlusion policy says VISIBLE, or (a shadowing policy)
 /// no shadow of a triangle that may block reaches the box. `shadows` caches prepared shadows
-/// (shadow_cache); a facet's shadows are keyed by facet and triangle.
+/// (shadow_cache, keyed by facet and triangle).
 template <class Occlusion, Interval I>
 bool prove_visible(const Occlusion& occlusion, const position_box<I>& p, std::size_t facet,
                    shadow_cache<I>& shadows) {
@@ -65,8 +65,7 @@ bool prove_visible(const Occlusion& occlusion, const position_box<I>& p, std::si
     if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
         if (seen == visibility::partial) {
             auto outside = [&](std::size_t triangle) {
-                const auto key = (static_cast<std::uint64_t>(facet) << 32) | static_cast<std::uint64_t>(triangle);
-                const auto& s = shadows.get(key, [&] { return occlusion.shadow(facet, triangle); });
+                const auto& s = shadows.get(facet, triangle, [&] { return occlusion.shadow(facet, triangle); });
                 const rounding_guard<I> rounding;
                 position_box<I> t = p;
                 contract_shadow(t, s);

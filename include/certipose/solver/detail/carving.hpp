@@ -166,28 +166,48 @@ prepared_shadow<I> prepare(const occlusion_shadow& s) {
     return out;
 }
 
-/// Prepared shadows by key (a scene triangle for one facet, or facet and triangle together): a
-/// triangle's shadow depends on the facet and the triangle alone, so each is built once.
-/// Node-based: pointers stay valid.
+/// Prepared shadows by facet and scene triangle: a triangle's shadow depends on the facet and the
+/// triangle alone, so each is built once. Keyed by both, so that a cache shared between facets
+/// can never hand one facet another's shadow. Append-only and node-based: a reference `get`
+/// returned stays valid for the cache's lifetime, which is what lets a box's state carry
+/// pointers into it (shadow_set holds the cache alive). It cannot be cleared, copied or moved;
+/// a user who must bound its memory starts a new one where no state points into the old.
 template <Interval I>
 class shadow_cache {
 public:
-    /// The shadow under `key`, from `make()` (an occlusion_shadow) the first time.
+    shadow_cache() = default;
+    shadow_cache(const shadow_cache&) = delete;
+    shadow_cache& operator=(const shadow_cache&) = delete;
+
+    /// The shadow of scene triangle `triangle` for facet `facet`, from `make()` (an
+    /// occlusion_shadow) the first time.
     template <class Make>
-    const prepared_shadow<I>& get(std::uint64_t key, Make&& make) {
-        auto it = map_.find(key);
+    const prepared_shadow<I>& get(std::size_t facet, std::size_t triangle, Make&& make) {
+        const key k{facet, triangle};
+        auto it = map_.find(k);
         if (it == map_.end()) {
             const rounding_guard<I> rounding;
-            it = map_.emplace(key, prepare<I>(make())).first;
+            it = map_.emplace(k, prepare<I>(make())).first;
         }
         return it->second;
     }
     std::size_t size() const noexcept { return map_.size(); }
-    /// Forgets every shadow (references returned by `get` become invalid).
-    void clear() noexcept { map_.clear(); }
 
 private:
-    std::unordered_map<std::uint64_t, prepared_shadow<I>> map_;
+    struct key {
+        std::size_t facet, triangle;
+        bool operator==(const key&) const = default;
+    };
+    struct key_hash {
+        std::size_t operator()(const key& k) const noexcept {
+            // splitmix64's finaliser over both: facets and triangles are small, dense integers
+            std::uint64_t x = static_cast<std::uint64_t>(k.facet) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(k.triangle);
+            x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+            x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+            return static_cast<std::size_t>(x ^ (x >> 31));
+        }
+    };
+    std::unordered_map<key, prepared_shadow<I>, key_hash> map_;
 };
 
 /// Narrows `box` to a box holding all its points with n·p ≤ rhs (emptying it when there are

@@ -39,7 +39,7 @@ class shadow_walker {
 public:
     using box = position_box<I>;
 
-    /// `cache`: prepared shadows by triangle, shared by the walkers of one facet's passes (a copy
+    /// `cache`: prepared shadows (by facet and triangle), shared by the walkers of one facet's passes (a copy
     /// of a walker shares it too: one facet's paving runs on one thread); `walks` counts walks.
     shadow_walker(const Occlusion* occlusion, std::size_t facet, std::shared_ptr<shadow_cache<I>> cache,
                   std::size_t* walks)
@@ -70,7 +70,7 @@ public:
         }
         named_.clear();
         for (const std::size_t triangle : found_)
-            named_.push_back(&cache_->get(triangle, [&] { return occlusion_->shadow(facet_, triangle); }));
+            named_.push_back(&cache_->get(facet_, triangle, [&] { return occlusion_->shadow(facet_, triangle); }));
         auto found = std::make_shared<shadow_set<I>>();
         found->storage = cache_;
         reach = reach_in(b, named_, found->list, covered, need_covered);
