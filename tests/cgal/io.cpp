@@ -15,6 +15,7 @@
 #include <certipose/occlusion/cgal_aabb_occlusion.hpp>
 #include <certipose/solver/task.hpp>
 
+#include <Eigen/Dense>
 #include <doctest/doctest.h>
 
 #include <array>
@@ -533,6 +534,76 @@ TEST_CASE("POSES.json: a 4x4 whose rotation is orthonormal only within 1e-6 gets
             CHECK(poses[0].orientation[k][1] >= angles[k]);
         }
     }
+}
+
+TEST_CASE("POSES.json: a 4x4's box holds every rotation within its off-orthonormality (the factor 4, bounded by test)") {
+    // A matrix M orthonormal only within off = max|MᵀM − I| names every rotation R with
+    // max|R − M| ≤ off as much as any other. The reader widens the box by 4·off in γ and
+    // 4·off / sin γ in φ and β. Here: random rotations (sin γ from 1e-3 to 1) perturbed entry by
+    // entry, and for each, rotations about 26 axes from M's nearest rotation (polar factor),
+    // pushed as far as max|R − M| ≤ off allows; every one must lie in the box, and the box's
+    // half-widths must be those the reader records (pose_input::converted_half_widths).
+    std::mt19937_64 e(11);
+    std::uniform_real_distribution<double> any(-3.1, 3.1), unit(-1, 1), tilt(std::asin(1e-3), std::numbers::pi / 2);
+    const auto angle_of = [](double a, double centre) { return std::remainder(a - centre, 2 * std::numbers::pi); };
+    double worst = 0;  // the largest |angle − centre| / (half-width − 1e-8) seen
+    int checked = 0;
+    for (int n = 0; n < 300; ++n) {
+        const double gamma = (n % 2 ? tilt(e) : std::numbers::pi - tilt(e)), eta = std::pow(10.0, -9 + 2.5 * (n % 5) / 4.0);
+        const Eigen::Matrix3d r0 = certipose::zxz_rotation(any(e), gamma, any(e));
+        Eigen::Matrix3d m = r0;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) m(a, b) += eta * unit(e);
+        const double off = (m.transpose() * m - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+        if (!(off <= certipose::pose_unit_tolerance) || !(off > 0)) continue;
+        nlohmann::json matrix = nlohmann::json::array();
+        for (int a = 0; a < 3; ++a) matrix.push_back({m(a, 0), m(a, 1), m(a, 2), 0.0});
+        matrix.push_back({0, 0, 0, 1});
+        nlohmann::json doc;
+        doc["poses"] = {{{"matrix", matrix}}};
+        const auto p = certipose::poses_from_json(doc).at(0);
+        REQUIRE(p.converted.has_value());
+        const double sin_gamma = std::sin((*p.converted)[4]);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double h = p.converted_half_widths[k];
+            CHECK(h == doctest::Approx(certipose::converted_pose_half_width + (k == 1 ? 4 * off : 4 * off / sin_gamma)).epsilon(1e-6));
+            CHECK(p.orientation[k][0] == (*p.converted)[k + 3] - h);
+            CHECK(p.orientation[k][1] == (*p.converted)[k + 3] + h);
+        }
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        const Eigen::Matrix3d polar = svd.matrixU() * svd.matrixV().transpose();
+        const auto within = [&](const Eigen::Matrix3d& r) {
+            const auto a = certipose::zxz_from_matrix(r);
+            const double angles[3] = {a.phi, a.gamma, a.beta};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const double d = std::abs(angle_of(angles[k], (*p.converted)[k + 3]));
+                CAPTURE(k);
+                CAPTURE(off);
+                CAPTURE(sin_gamma);
+                CHECK(d <= p.converted_half_widths[k]);
+                worst = std::max(worst, d / (p.converted_half_widths[k] - certipose::converted_pose_half_width));
+            }
+            ++checked;
+        };
+        REQUIRE((polar - m).cwiseAbs().maxCoeff() <= off);  // the nearest rotation is one of them
+        within(polar);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    if (!dx && !dy && !dz) continue;
+                    const Eigen::Vector3d axis = Eigen::Vector3d(dx, dy, dz).normalized();
+                    const auto turned = [&](double s) { return Eigen::Matrix3d(polar * Eigen::AngleAxisd(s, axis)); };
+                    double lo = 0, hi = 8 * off;  // the largest turn with max|R − M| ≤ off, by bisection
+                    for (int it = 0; it < 60; ++it) {
+                        const double s = (lo + hi) / 2;
+                        ((turned(s) - m).cwiseAbs().maxCoeff() <= off ? lo : hi) = s;
+                    }
+                    within(turned(lo));
+                }
+    }
+    CHECK(checked > 5000);
+    MESSAGE("largest share of the widening used: " << worst);  // the factor 4's margin
+    CHECK(worst < 1.0);
 }
 
 TEST_CASE("POSES.json: quaternion and 4x4 poses become 1e-8 rad boxes around their ZXZ angles") {

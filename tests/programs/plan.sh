@@ -133,7 +133,11 @@ h = math.sin(gamma / 2), math.cos(gamma / 2)
 q = [h[0] * math.cos((phi - beta) / 2), h[0] * math.sin((phi - beta) / 2), h[1] * math.sin((phi + beta) / 2),
      h[1] * math.cos((phi + beta) / 2)]
 m = [r[0] + [x], r[1] + [y], r[2] + [z], [0, 0, 0, 1]]
-json.dump({"poses": [[x, y, z, phi, gamma, beta], {"position": [x, y, z], "quaternion": q}, {"matrix": m}]},
+# the same matrix, orthonormal only within about 4e-7: its box is widened, per angle
+n = [row[:] for row in m]
+n[0][1] += 2e-7; n[2][0] -= 2e-7
+json.dump({"poses": [[x, y, z, phi, gamma, beta], {"position": [x, y, z], "quaternion": q}, {"matrix": m},
+                     {"matrix": n}]},
           open("forms.json", "w"))' "$nominal" || fail "could not write forms.json"
 "$verify" --mesh "$mesh" --camera "$camera" --poses forms.json --out forms_report.json >vout 2>err \
     || fail "certipose-verify (quaternion, matrix) failed: $(cat err)"
@@ -142,9 +146,22 @@ grep -q 'pose 2 (matrix): [1-9][0-9]* facets certified' vout || fail "the matrix
 grep -q 'pose 1 (quaternion).*tolerance +-' vout || fail "no tolerance box for a quaternion pose: $(cat vout)"
 python3 -c 'import json, sys
 p = json.load(open("forms_report.json"))["poses"]
-assert [e["kind"] for e in p] == ["pose", "quaternion", "matrix"], [e["kind"] for e in p]
-assert p[0]["facets"] and p[1]["facets"] == p[0]["facets"] and p[2]["facets"] == p[0]["facets"], [e["facets"] for e in p]' \
-    || fail "quaternion / matrix poses certify other facets than the ZXZ pose"
+assert [e["kind"] for e in p] == ["pose", "quaternion", "matrix", "matrix"], [e["kind"] for e in p]
+assert p[0]["facets"] and p[1]["facets"] == p[0]["facets"] and p[2]["facets"] == p[0]["facets"], [e["facets"] for e in p]
+# A converted pose stands for every angle of its box: the half-widths reported hold from each
+# edge of it, so each is the tolerance box less the half-width of that angle (for the widened
+# matrix, 4 off / sin(gamma) in phi and beta, far more than 1e-8).
+for e in p[1:]:
+    t = e["tolerance"]
+    assert t, e
+    for k in range(3):
+        lo, hi = e["orientation"][k]
+        c, h = (lo + hi) / 2, (hi - lo) / 2
+        room = min(c - t["orientation"][k][0], t["orientation"][k][1] - c) - h
+        assert t["half_widths"][k + 3] <= room + 1e-15, (e["index"], k, t["half_widths"][k + 3], room, h)
+w = [(b - a) / 2 for a, b in p[3]["orientation"]]
+assert w[0] > 1e-7 and w[2] > 1e-7 and w[1] > 1e-8, w  # the widened box' \
+    || fail "quaternion / matrix poses certify other facets than the ZXZ pose, or their tolerances ignore the pose's own box"
 # At the gimbal lock (optical axis along world -Z) a quaternion is refused: give ZXZ angles.
 echo '{"poses": [{"position": [0, 0, 1], "quaternion": [1, 0, 0, 0]}]}' > lock.json
 "$verify" --mesh "$mesh" --camera "$camera" --poses lock.json 2>err

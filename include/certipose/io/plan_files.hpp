@@ -344,8 +344,12 @@ struct pose_input {
     bounds_3d position{}, orientation{};          ///< the box (for an exact pose: the point itself)
     pose_form form = pose_form::box;
     /// Quaternion and matrix poses: the converted [x, y, z, φ, γ, β], the centre of the box
-    /// (whose orientation is ±converted_pose_half_width around it, its position the point).
+    /// (whose orientation is ±converted_half_widths around it, its position the point).
     std::optional<std::array<double, 6>> converted{};
+    /// Quaternion and matrix poses: the half-widths (radians) of the box's φ, γ, β about the
+    /// converted angles: converted_pose_half_width, and for a matrix not quite orthonormal its
+    /// widening for that (detail::json_io::converted_pose). Zero for other forms.
+    std::array<double, 3> converted_half_widths{};
 };
 
 namespace detail::json_io {
@@ -373,6 +377,7 @@ inline pose_input converted_pose(const Eigen::Matrix3d& r, const std::array<doub
         p.position[k] = {x[k], x[k]};
         const double h = converted_pose_half_width + (k == 1 ? 4 * slack : 4 * slack / sin_gamma);
         p.orientation[k] = {angles[k] - h, angles[k] + h};
+        p.converted_half_widths[k] = h;
     }
     return p;
 }

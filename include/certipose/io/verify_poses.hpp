@@ -45,7 +45,7 @@ struct pose_verification {
     /// Asked for (an exact or converted pose, with C(B) not empty): the largest box around the
     /// pose keeping C(B) certified (nothing when there is none), and its half-widths about the
     /// pose (x, y, z in metres, φ, γ, β in radians; for a converted pose, less its own
-    /// ±converted_pose_half_width, so they hold for the true pose).
+    /// half-widths, pose_input::converted_half_widths, so they hold for the true pose).
     bool tolerance_asked = false;
     std::optional<bounds_3d> tolerance_position{}, tolerance_orientation{};
     std::array<double, 6> half_widths{};
@@ -66,10 +66,10 @@ pose_verification verify_pose(facet_inspector<Policies>& inspector, const pose_i
     out.where = regions.classify(box.position);
     if (out.where != region_verdict::forbidden) out.coverage = inspector.inspect(box);
     if (out.where != region_verdict::allowed) out.coverage.certified.clear(), out.coverage.certified_area = 0;
-    // An exact pose, or the centre of a converted one (whose box is ±converted_pose_half_width
-    // in each angle: the half-widths are measured from that box, so they hold for the true pose).
+    // An exact pose, or the centre of a converted one, whose box is ±converted_half_widths
+    // about it, each angle its own (a matrix not quite orthonormal widens φ and β by 1/sin γ
+    // more than γ): the half-widths are measured from that box, so they hold for the true pose.
     const auto& centre = p.pose ? p.pose : p.converted;
-    const double slack = p.pose ? 0.0 : converted_pose_half_width;
     if (!centre || !tolerance || out.coverage.certified.empty()) return out;
     out.tolerance_asked = true;
     std::optional<pose_box<I>> t = inspector.largest_box_keeping(*centre, out.coverage.certified);
@@ -78,7 +78,8 @@ pose_verification verify_pose(facet_inspector<Policies>& inspector, const pose_i
     const auto rec = to_record(classified_box<I>{box_class::valid, *t});
     for (std::size_t k = 0; k < 3; ++k) {
         out.half_widths[k] = std::min((*centre)[k] - rec.position[k][0], rec.position[k][1] - (*centre)[k]);
-        out.half_widths[k + 3] = std::min((*centre)[k + 3] - rec.orientation[k][0], rec.orientation[k][1] - (*centre)[k + 3]) - slack;
+        out.half_widths[k + 3] = std::min((*centre)[k + 3] - rec.orientation[k][0], rec.orientation[k][1] - (*centre)[k + 3]) -
+                                 (p.pose ? 0.0 : p.converted_half_widths[k]);
         if (!(out.half_widths[k + 3] >= 0)) return out;
     }
     out.tolerance_position = rec.position;
