@@ -49,6 +49,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 
@@ -205,6 +206,11 @@ struct process {
     int rank = 0, ranks = 1;
 };
 
+/// An error on one rank during an MPI run, while the other ranks wait for it (see `solve`).
+struct rank_failure : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 /// Discards what it is given (the sink of MPI ranks other than 0, which write nothing).
 struct null_sink {
     void facet(const certipose::facet_outcome<certipose::boost_interval>&) {}
@@ -254,7 +260,16 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
 
     const auto solve = [&](auto& sink) {
 #if defined(CERTIPOSE_PART_MPI)
-        return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
+        // Every rank reads the same inputs, so errors before this point happen on all of them and
+        // each returns. An error during the run is one rank's alone (rank 0's disk full, a
+        // worker's failure) while the others wait for its messages: name the rank and end the
+        // job, rather than return into MPI_Finalize and leave the others hanging.
+        // main() does, once this rank's files are unwound (no staged file left behind).
+        try {
+            return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
+        } catch (const std::exception& e) {
+            throw rank_failure(e.what());
+        }
 #else
         return part.solve(opt, sink);
 #endif
@@ -375,6 +390,13 @@ int main(int argc, char** argv) {
         if (args->occlusion == "boolean") return run<certipose::boolean_occlusion>(*args, mesh, input, extra, signals, proc);
         if (args->occlusion == "none") return run<certipose::no_occlusion>(*args, mesh, input, extra, signals, proc);
         return run<certipose::aabb_occlusion>(*args, mesh, input, extra, signals, proc);
+    } catch (const rank_failure& e) {
+        std::cerr << "certipose-part: rank " << proc.rank << " of " << proc.ranks << ": " << one_line(e.what())
+                  << "; ending the MPI job" << std::endl;
+#if defined(CERTIPOSE_PART_MPI)
+        if (proc.ranks > 1) MPI_Abort(MPI_COMM_WORLD, exit_failure);
+#endif
+        return exit_failure;
     } catch (const certipose::error& e) {
         return report(e.what());
     } catch (const std::exception& e) {

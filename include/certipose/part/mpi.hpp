@@ -16,6 +16,11 @@
 // decided on rank 0, in facet order. Results cross the wire as raw doubles: bounds are copied
 // exactly. Needs an MPI implementation (Open MPI: Debian libopenmpi-dev); certipose's other
 // headers never include this one.
+//
+// Errors: an exception on a rank (rank 0's sink failing to write, a throwing progress callback,
+// a worker's solve) leaves solve_part_mpi on that rank only, after its own threads are joined;
+// the other ranks are still waiting for messages. The caller must end the job: catch it, say
+// which rank failed, and call MPI_Abort (certipose-part-mpi does).
 #pragma once
 
 #include <mpi.h>
@@ -27,6 +32,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -220,24 +226,46 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     std::deque<std::size_t> local_queue;
     std::vector<std::pair<std::size_t, std::string>> local_done;
     bool local_stop = false;
+    std::exception_ptr local_error;  // what the local worker threw, rethrown on the main thread
     std::stop_source local_cancel;
     std::thread local_worker([&] {
-        for (;;) {
-            std::size_t c = 0;
-            {
-                std::unique_lock lock(m);
-                cv.wait(lock, [&] { return local_stop || !local_queue.empty(); });
-                if (local_queue.empty()) return;
-                c = local_queue.front();
-                local_queue.pop_front();
+        try {
+            for (;;) {
+                std::size_t c = 0;
+                {
+                    std::unique_lock lock(m);
+                    cv.wait(lock, [&] { return local_stop || !local_queue.empty(); });
+                    if (local_queue.empty()) return;
+                    c = local_queue.front();
+                    local_queue.pop_front();
+                }
+                std::string bytes = solve_chunk(c, local_cancel.get_token());
+                {
+                    std::lock_guard lock(m);
+                    local_done.emplace_back(c, std::move(bytes));
+                }
             }
-            std::string bytes = solve_chunk(c, local_cancel.get_token());
-            {
-                std::lock_guard lock(m);
-                local_done.emplace_back(c, std::move(bytes));
-            }
+        } catch (...) {
+            const std::lock_guard lock(m);
+            local_error = std::current_exception();
         }
     });
+    // Stops and joins the local worker however this function is left: an exception from the sink
+    // or the progress callback must not unwind past a joinable std::thread (std::terminate).
+    const auto stop_local = [&] {
+        {
+            std::lock_guard lock(m);
+            local_stop = true;
+            local_queue.clear();
+        }
+        local_cancel.request_stop();
+        cv.notify_one();
+        if (local_worker.joinable()) local_worker.join();
+    };
+    struct local_joiner {
+        const decltype(stop_local)& stop;
+        ~local_joiner() { stop(); }
+    } joiner{stop_local};
     const std::size_t window = std::max<std::size_t>(1, mpi.window) * static_cast<std::size_t>(ranks);
     const auto may_hand_out = [&] { return !stopping && next_chunk < chunks && next_chunk < next_emit + window; };
     bool local_busy = false;
@@ -310,6 +338,7 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
         }
         {
             std::lock_guard lock(m);
+            if (local_error) std::rethrow_exception(local_error);
             for (auto& [c, bytes] : local_done) finished.emplace(c, std::move(bytes)), local_busy = false;
             local_done.clear();
         }
@@ -318,14 +347,8 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     }
 
     // Wind down: stop the local worker, tell every worker to stop (draining what they send).
-    {
-        std::lock_guard lock(m);
-        local_stop = true;
-        local_queue.clear();
-    }
-    local_cancel.request_stop();
-    cv.notify_one();
-    local_worker.join();
+    stop_local();
+    if (local_error) std::rethrow_exception(local_error);
     while (workers_left > 0) {
         for (int w : waiting) {
             const std::int64_t stop = -1;
