@@ -262,9 +262,9 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
 #if defined(CERTIPOSE_PART_MPI)
         // Every rank reads the same inputs, so errors before this point happen on all of them and
         // each returns. An error during the run is one rank's alone (rank 0's disk full, a
-        // worker's failure) while the others wait for its messages: name the rank and end the
-        // job, rather than return into MPI_Finalize and leave the others hanging.
-        // main() does, once this rank's files are unwound (no staged file left behind).
+        // worker's failure) while the others wait for its messages: it must name the rank and
+        // end the job, not return into MPI_Finalize and leave the others hanging. main() does
+        // that on rank_failure, once this rank's staged files are unwound and removed.
         try {
             return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
         } catch (const std::exception& e) {
