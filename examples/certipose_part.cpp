@@ -172,14 +172,14 @@ using part_solver_for = certipose::part_solver<std::conditional_t<
 
 /// summary.json's record of everything else that changes the answer, and of the survey when
 /// the occlusion read the scene as a triangle soup.
-template <class Occlusion>
+template <class Part, class Occlusion>
 void describe_run_settings(certipose::part_summary& s, const arguments& args, const certipose::solve_options& facet,
                            const Occlusion& occlusion) {
     auto& st = s.settings;
     st.paving = args.paper_paving ? "paper" : "default";
-    const certipose::carving c = certipose::carving_steps(facet.paving);
-    st.inner_contraction = c.inner_contraction;
-    st.occlusion_cuts = c.occlusion_cuts;
+    const certipose::carving c = Part::solver_type::paving_steps(facet.paving);
+    st.inner_contraction = c.inner_contraction.is_on();
+    st.occlusion_cuts = c.occlusion_cuts.is_on();
     st.leaf_corner_boxes = c.corner_boxes;
     st.corner_depth = c.corner_depth;
     st.corner_rest_min_pieces = c.rest_min_pieces;
@@ -235,8 +235,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.facet.orientation_eps = args.orientation_eps;
     if (args.max_boxes_per_facet) opt.facet.max_boxes = *args.max_boxes_per_facet;
     if (args.facet_time_limit) opt.facet.time_limit = seconds(*args.facet_time_limit);
-    opt.facet.paving = paving_for(args.paper_paving, !std::is_same_v<Occlusion, certipose::boolean_occlusion>,
-                                  args.corner_depth, args.corner_rest);
+    opt.facet.paving = paving_for(args.paper_paving, args.corner_depth, args.corner_rest);
     if (args.refine) opt.facet.refine = certipose::refinement{.time_limit = seconds(*args.refine)};
     if (args.grow) opt.facet.grow = certipose::growth_options{};
     if (args.time_limit) opt.time_limit = seconds(*args.time_limit);
@@ -302,7 +301,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     s.settings.boundary = args.boundary;
     s.settings.occlusion = args.occlusion;
     s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
-    describe_run_settings(s, args, opt.facet, part.solver().occlusion());
+    describe_run_settings<std::decay_t<decltype(part)>>(s, args, opt.facet, part.solver().occlusion());
     s.scene = extra.record;
     s.facets = r.facets;
     s.totals = {r.seconds, r.threads, static_cast<std::size_t>(proc.ranks), r.facets_selected, r.facets.size(), r.valid,

@@ -177,8 +177,7 @@ int main(int argc, char** argv) {
         if (args.time_limit_seconds)
             options.time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                 std::chrono::duration<double>(*args.time_limit_seconds));
-        options.paving = certipose_program::paving_for(args.paper_paving, args.occlusion != certipose_solve::occlusion_mode::boolean,
-                                                       args.corner_depth, args.corner_rest);
+        options.paving = certipose_program::paving_for(args.paper_paving, args.corner_depth, args.corner_rest);
         if (args.refine_seconds)
             options.refine = certipose::refinement{
                 .time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(

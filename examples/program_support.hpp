@@ -166,14 +166,13 @@ inline std::size_t parse_count(const std::string& option, const std::string& tex
     return v;
 }
 
-/// The paving choice of --paper-paving, --corner-depth and --corner-rest. Occlusion cuts need
-/// a policy that names the shadows of possible blockers (ShadowingOcclusionPolicy): `aabb` and
-/// `none` do, `boolean` (the paper's test) does not, so with it carving runs without them.
-inline certipose::paving_choice paving_for(bool paper, bool shadowing_occlusion, std::optional<std::size_t> corner_depth,
+/// The paving choice of --paper-paving, --corner-depth and --corner-rest. Carving's steps that
+/// need a capability are left to the pipeline's policies (paving.hpp): with --occlusion boolean,
+/// whose test names no shadows, carving runs without occlusion cuts.
+inline certipose::paving_choice paving_for(bool paper, std::optional<std::size_t> corner_depth,
                                            std::optional<double> corner_rest) {
     if (paper) return certipose::paper_paving{};
     certipose::carving c;
-    c.occlusion_cuts = shadowing_occlusion;
     if (corner_depth) c.corner_depth = *corner_depth;
     if (corner_rest) c.rest_min_pieces = *corner_rest;
     return c;

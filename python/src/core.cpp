@@ -225,7 +225,7 @@ struct facet_settings {
     bool paper_paving = false, grow = false;
 };
 
-cp::solve_options solve_options_of(const facet_settings& s, bool shadowing_occlusion) {
+cp::solve_options solve_options_of(const facet_settings& s) {
     cp::solve_options o;
     o.position_eps = s.position_eps;
     o.orientation_eps = s.orientation_eps;
@@ -238,7 +238,6 @@ cp::solve_options solve_options_of(const facet_settings& s, bool shadowing_occlu
         o.paving = cp::paper_paving{};
     } else {
         cp::carving c;
-        c.occlusion_cuts = shadowing_occlusion;  // the boolean test names no shadows
         if (s.corner_depth) c.corner_depth = *s.corner_depth;
         if (s.corner_rest) c.rest_min_pieces = *s.corner_rest;
         o.paving = c;
@@ -399,7 +398,6 @@ public:
     std::shared_ptr<const cp::triangle_mesh> mesh_ptr() const { return mesh_; }
     const cp::camera_task& camera() const { return input_; }
     const std::string& occlusion() const { return occlusion_; }
-    bool shadowing() const { return occlusion_ != "boolean"; }
 
     template <class F>
     decltype(auto) visit(F&& f) const {
@@ -408,7 +406,7 @@ public:
 
     facet_result solve_facet(std::size_t facet, const facet_settings& s) const {
         (void)mesh_->facet(facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
-        cp::solve_options o = solve_options_of(s, shadowing());
+        cp::solve_options o = solve_options_of(s);
         auto result = run_released([&](std::stop_token stop) {
             o.stop = stop;
             auto r = visit([&](const auto& part) { return part.solver().solve(facet, o); });
@@ -645,7 +643,7 @@ std::unique_ptr<part_run> start_part(std::shared_ptr<solver> s, const facet_sett
                                      std::optional<std::size_t> max_boxes_total, std::optional<double> time_limit_total,
                                      bool reuse, py::object progress, bool collect) {
     cp::part_options opt;
-    opt.facet = solve_options_of(fs, s->shadowing());
+    opt.facet = solve_options_of(fs);
     if (facets) opt.facets = cp::parse_facet_selection(*facets, s->mesh().num_faces());
     opt.threads = threads;
     opt.keep_boundary = boundary;

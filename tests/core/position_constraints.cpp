@@ -148,11 +148,16 @@ TEST_CASE("a user constraint set combines with the paper's through all_of") {
     const no_occlusion occ(part().mesh);
     using combined = all_of<paper_position_constraints<I>, above_conveyor<I>>;
     const auto plain = pave_positions<I, paper_position_constraints<I>>(problem, id, occ, {}, 0.1);
-    // above_conveyor cannot contract its complement, so neither can the combination: carving
-    // without inner contraction, said explicitly (asked for, it is refused, naming the concept).
-    CHECK_THROWS_WITH_AS((pave_positions<I, combined>(problem, id, occ, {}, 0.1)),
+    // above_conveyor cannot contract its complement, so neither can the combination: the default
+    // carving paves without inner contraction, as when it is turned off; asked for, it is
+    // refused, naming the concept.
+    CHECK_THROWS_WITH_AS((pave_positions<I, combined>(problem, id, occ, {}, 0.1, {}, {}, carving{.inner_contraction = true})),
                          doctest::Contains("certipose::ComplementContractingSet"), certipose::invalid_argument);
-    const auto raised = pave_positions<I, combined>(problem, id, occ, {}, 0.1, {}, {}, carving{.inner_contraction = false});
+    CHECK_FALSE(paving_steps<combined, no_occlusion, I>(carving{}).inner_contraction.is_on());
+    const auto raised = pave_positions<I, combined>(problem, id, occ, {}, 0.1);
+    const auto said_off = pave_positions<I, combined>(problem, id, occ, {}, 0.1, {}, {}, carving{.inner_contraction = false});
+    CHECK(raised.boxes.valid.size() == said_off.boxes.valid.size());
+    CHECK(raised.boxes.boundary.size() == said_off.boxes.boundary.size());
     REQUIRE_FALSE(raised.boxes.valid.empty());
     for (const auto& b : raised.boxes.valid) CHECK(lower(b[2]) >= above_conveyor<I>::height);
     for (const auto& b : raised.boxes.boundary) CHECK(upper(b[2]) >= above_conveyor<I>::height);

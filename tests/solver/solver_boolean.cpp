@@ -18,6 +18,18 @@ TEST_CASE("boolean and aabb occlusion certify the same position boxes on a small
     const auto fast = default_solver<aabb_occlusion>(small.mesh, camera, task).solve(small.facet_of_interest, opt);
     const auto exact = default_solver<boolean_occlusion>(small.mesh, camera, task).solve(small.facet_of_interest, opt);
     REQUIRE(exact.stats.valid > 0);
+    // The default carving follows the policies: with the boolean test it takes no occlusion cuts,
+    // so it is the run above; asked for, they are refused, naming the concept.
+    using boolean_solver = default_solver<boolean_occlusion>;
+    CHECK_FALSE(boolean_solver::paving_steps(carving{}).occlusion_cuts.is_on());
+    CHECK(boolean_solver::paving_steps(carving{}).inner_contraction.is_on());
+    const auto by_default = default_solver<boolean_occlusion>(small.mesh, camera, task)
+                                .solve(small.facet_of_interest, {.position_eps = 0.1, .orientation_eps = 0.38});
+    CHECK_FALSE(by_default.stats.paving.occlusion_cuts.is_on());
+    CHECK(valid_box_set(by_default) == valid_box_set(exact));
+    CHECK_THROWS_WITH_AS(default_solver<boolean_occlusion>(small.mesh, camera, task)
+                             .solve(small.facet_of_interest, {.paving = carving{.occlusion_cuts = true}}),
+                         doctest::Contains("certipose::ShadowingOcclusionPolicy"), certipose::invalid_argument);
     // Both are exact on VISIBLE and neither says VISIBLE where a sight line is blocked; the paving
     // of a box both call VISIBLE is the same, and boxes the boolean test discards as OCCLUDED
     // hold no visible sub-box, so the VALID sets coincide.

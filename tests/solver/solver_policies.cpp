@@ -41,14 +41,26 @@ TEST_CASE("every policy swapped once still passes the sampling check") {
                                                 .height_px = 2048, .d_min = 0.45, .d_max = 0.7});
     swap_check<pose_solver<with_interval<cgal_interval>>>("interval type: cgal_interval", thin, 11);
     swap_check<pose_solver<with_camera<pinhole_camera>>>("camera: pinhole", pin, 12);
-    // The guard plane cannot contract its complement: carving runs without inner contraction,
-    // as the user must say (the default asks for it and is refused, naming the concept).
-    swap_check<pose_solver<with_constraints<guarded_constraints>>>("constraint set: paper + user guard plane", thin, 13,
-                                                                   carving{.inner_contraction = false});
+    // The guard plane cannot contract its complement: the default carving runs without inner
+    // contraction (the step follows the policies), as does carving that turns it off; asked for
+    // with `true`, it is refused, naming the concept.
+    swap_check<pose_solver<with_constraints<guarded_constraints>>>("constraint set: paper + user guard plane", thin, 13);
+    swap_check<pose_solver<with_constraints<guarded_constraints>>>("constraint set: paper + user guard plane, said off", thin,
+                                                                   17, carving{.inner_contraction = false});
     {
-        const pose_solver<with_constraints<guarded_constraints>> guarded(part().mesh, thin, {.min_view_angle = 0.35});
-        CHECK_THROWS_WITH_AS(guarded.solve(part().facet_of_interest),
+        using guarded_solver = pose_solver<with_constraints<guarded_constraints>>;
+        const guarded_solver guarded(part().mesh, thin, {.min_view_angle = 0.35});
+        const carving steps = guarded_solver::paving_steps(carving{});
+        CHECK_FALSE(steps.inner_contraction.is_on());
+        CHECK(steps.occlusion_cuts.is_on());  // aabb_occlusion gives shadows
+        const auto r = guarded.solve(part().facet_of_interest, {.position_eps = 0.1, .orientation_eps = 0.38});
+        CHECK_FALSE(r.stats.paving.inner_contraction.is_on());
+        CHECK(r.stats.inner_pieces == 0);
+        CHECK_THROWS_WITH_AS(guarded.solve(part().facet_of_interest, {.paving = carving{.inner_contraction = true}}),
                              doctest::Contains("certipose::ComplementContractingSet"), certipose::invalid_argument);
+        // The paper's own set can: the default takes the step there.
+        CHECK(pose_solver<>::paving_steps(carving{}).inner_contraction.is_on());
+        CHECK_FALSE(pose_solver<>::paving_steps(paper_paving{}).inner_contraction.is_on());
     }
     swap_check<pose_solver<with_contraction<contraction::acid_shaving>>>("contractor: ACID", thin, 14);
     swap_check<pose_solver<with_bisector<round_robin>>>("bisector: round robin", thin, 15);

@@ -142,9 +142,9 @@ result_document make_result_document(const solve_result<I>& result, const triang
     }
     d.camera = describe_camera_record(camera, task);
     d.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
-    // The paper's paving records carving's steps off (and its tuning at the defaults).
-    const carving c = carving_steps(options.paving);
-    d.settings = {options.position_eps, options.orientation_eps, c.inner_contraction, c.occlusion_cuts,
+    // The steps the solve took, decided for its policies (the paper's paving: all off).
+    const carving& c = result.stats.paving;
+    d.settings = {options.position_eps, options.orientation_eps, c.inner_contraction.is_on(), c.occlusion_cuts.is_on(),
                   c.corner_boxes, c.corner_depth, c.rest_min_pieces,
                   options.refine ? std::optional<double>(options.refine->width(options.position_eps)) : std::nullopt,
                   options.grow.has_value()};

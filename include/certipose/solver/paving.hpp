@@ -8,15 +8,20 @@
 //                  orientation stage then also runs the steps meant for the many small boxes
 //                  this makes (solver/orientation_schedule.hpp: merges, groups, borrowing).
 //
-// `carving` holds the stage's tuning, in units of ε_p, each with a default. Each of its steps
-// needs a capability of a policy: inner contraction a ComplementContractingSet, occlusion cuts a
-// ShadowingOcclusionPolicy. A step that is on for a policy without the capability is an error
-// (invalid_argument naming the step and the concept), never skipped: turn it off to pave
-// without it (the programs do for --occlusion boolean: the paper's test names no shadows).
+// `carving` holds the stage's tuning, in units of ε_p, each with a default. Two of its steps
+// need a capability of a policy: inner contraction a ComplementContractingSet, occlusion cuts a
+// ShadowingOcclusionPolicy. Each is a `step_switch`, by default on exactly when the run's
+// policies have the capability (as CGAL's named parameters take a default from the traits), so
+// `carving{}` serves every pipeline and no caller works out what its policies can do. `true`
+// asks for the step: for policies without the capability that is an error (invalid_argument
+// naming the step and the concept, when the position stage is built), never a silent change of
+// algorithm; `false` turns it off. The steps a run took are `pose_solver::paving_steps` and
+// `solve_stats::paving`, with every switch decided.
 #pragma once
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <variant>
 
@@ -30,14 +35,41 @@ struct paper_paving {
     void validate() const {}
 };
 
+/// A carving step that needs a capability of a policy: on, off, or (the default) on exactly when
+/// the run's policies have it (see the header comment). `true` and `false` convert to it, so
+/// `carving{.occlusion_cuts = false}` reads as before.
+class step_switch {
+public:
+    constexpr step_switch() noexcept = default;
+    constexpr step_switch(bool on) noexcept : state_(on ? state::on : state::off) {}  // NOLINT: a switch is set with a bool
+    /// The default: on when the policies can serve the step.
+    static constexpr step_switch when_available() noexcept { return {}; }
+
+    /// Left to the policies (the default).
+    constexpr bool follows_policies() const noexcept { return state_ == state::automatic; }
+    /// Asked for with `true`: policies without the capability are an error.
+    constexpr bool required() const noexcept { return state_ == state::on; }
+    /// Whether the step runs for policies that have (`available`) or lack its capability.
+    constexpr bool decide(bool available) const noexcept { return state_ == state::automatic ? available : state_ == state::on; }
+    /// On, once decided (pose_solver::paving_steps, solve_stats::paving): a switch still left to
+    /// the policies is not on.
+    constexpr bool is_on() const noexcept { return state_ == state::on; }
+
+    friend constexpr bool operator==(step_switch, step_switch) noexcept = default;
+
+private:
+    enum class state : std::uint8_t { automatic, on, off };
+    state state_ = state::automatic;
+};
+
 /// Carving past the paper (solver/position_stage.hpp, solver/detail/carving.hpp).
 struct carving {
     /// Carve the part of a partly valid box that certainly satisfies the constraint set off it
-    /// (the set must model ComplementContractingSet).
-    bool inner_contraction = true;
-    /// Carve the certainly visible part off a box that occlusion leaves PARTIAL (the occlusion
-    /// policy must model ShadowingOcclusionPolicy).
-    bool occlusion_cuts = true;
+    /// (needs a ComplementContractingSet; by default on when the set is one).
+    step_switch inner_contraction{};
+    /// Carve the certainly visible part off a box that occlusion leaves PARTIAL (needs a
+    /// ShadowingOcclusionPolicy; by default on when the occlusion policy is one).
+    step_switch occlusion_cuts{};
     /// Of a box the bisector declines and that stays undecided, certify the largest box from one
     /// of its corners (VALID) and leave only the rest BOUNDARY.
     bool corner_boxes = true;
@@ -74,11 +106,28 @@ using paving_choice = std::variant<carving, paper_paving>;
 /// The carving of a choice, or nothing for the paper's paving.
 inline const carving* carving_of(const paving_choice& p) noexcept { return std::get_if<carving>(&p); }
 
-/// The steps a choice takes, as a carving: the paper's paving is carving with every step off
-/// (its tuning at the defaults, which no step reads then).
-inline carving carving_steps(const paving_choice& p) noexcept {
-    if (const carving* c = carving_of(p)) return *c;
-    return carving{.inner_contraction = false, .occlusion_cuts = false, .corner_boxes = false};
+/// The steps a choice takes for policies that have (or lack) each step's capability, as a
+/// carving with every switch decided: the paper's paving is carving with every step off (its
+/// tuning at the defaults, which no step reads then). Throws invalid_argument naming the step
+/// and the concept when a step is asked for (`true`) and the policies lack its capability.
+/// pose_solver::paving_steps calls it with its own policies' capabilities.
+inline carving carving_steps(const paving_choice& p, bool complement_contracting_set, bool shadowing_occlusion) {
+    const carving* c = carving_of(p);
+    if (!c) return carving{.inner_contraction = false, .occlusion_cuts = false, .corner_boxes = false};
+    if (c->inner_contraction.required() && !complement_contracting_set)
+        throw invalid_argument("paving.inner_contraction",
+                               "carving: inner contraction needs a constraint set modelling "
+                               "certipose::ComplementContractingSet (contract_complement); this one does not: leave "
+                               "carving::inner_contraction to the policies or set it to false");
+    if (c->occlusion_cuts.required() && !shadowing_occlusion)
+        throw invalid_argument("paving.occlusion_cuts",
+                               "carving: occlusion cuts need an occlusion policy modelling "
+                               "certipose::ShadowingOcclusionPolicy (blockers, shadow), e.g. aabb_occlusion; this "
+                               "one does not: leave carving::occlusion_cuts to the policies or set it to false");
+    carving out = *c;
+    out.inner_contraction = c->inner_contraction.decide(complement_contracting_set);
+    out.occlusion_cuts = c->occlusion_cuts.decide(shadowing_occlusion);
+    return out;
 }
 
 }  // namespace certipose

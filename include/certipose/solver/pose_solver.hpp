@@ -239,6 +239,13 @@ public:
     const placement_scene* placement_proofs() const noexcept { return placement_ ? &*placement_ : nullptr; }
 
 
+    /// The steps `paving` takes with this pipeline's policies: carving's switches left to the
+    /// policies decided by what the constraint set and the occlusion policy can do (paving.hpp).
+    /// Throws invalid_argument for a step asked for that they cannot serve.
+    static carving paving_steps(const paving_choice& paving) {
+        return certipose::paving_steps<constraint_set_type, occlusion_type, I>(paving);
+    }
+
     /// The position stage the pipeline runs for a facet (solver/position_stage.hpp), as `solve`
     /// builds it: its `contractor()` is the contraction policy's contractor on the facet's
     /// constraint set, `pave` / `refine` its steps. For tests and benchmarks of a stage alone.
@@ -327,6 +334,7 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
     result_type out;
     out.facet_index = facet_index;
     out.stats.occlusion_checked = checks_occlusion<occlusion_type>;
+    out.stats.paving = paving_steps(options.paving);
 
     position_stage_result<I> positions = run_position_stage(facet_index, options, clock, out);  // lines 1–27
     run_orientation_stage(f, options, clock, positions, out);                                   // lines 28–36

@@ -63,31 +63,20 @@ struct separator_rules {
     /// occlusion cuts, and in refinement, where they rarely succeed).
     bool occluded_proofs = true;
 
-    static separator_rules from(const paving_choice& paving, double position_eps) {
-        const carving steps = carving_steps(paving);
-        return separator_rules{steps, steps.min_piece(position_eps), !steps.occlusion_cuts};
+    /// `steps` decided for the stage's policies (paving_steps).
+    static separator_rules from(const carving& steps, double position_eps) {
+        return separator_rules{steps, steps.min_piece(position_eps), !steps.occlusion_cuts.is_on()};
     }
 };
 }  // namespace detail
 
-/// A step of `carving` that is on for policies without the capability it needs is an error, not
-/// a silent change of algorithm: throws invalid_argument naming the step and the concept.
+/// The steps `paving` takes with a constraint set `Set` and an occlusion policy `Occlusion`:
+/// each step_switch left to the policies is on when they have its capability (paving.hpp).
+/// Throws invalid_argument naming the step and the concept when one is asked for (`true`) and
+/// they do not.
 template <class Set, class Occlusion, Interval I>
-void check_paving(const paving_choice& paving) {
-    const carving* c = carving_of(paving);
-    if (!c) return;
-    if constexpr (!ComplementContractingSet<Set, I>)
-        if (c->inner_contraction)
-            throw invalid_argument("paving.inner_contraction",
-                                   "carving: inner contraction needs a constraint set modelling "
-                                   "certipose::ComplementContractingSet (contract_complement); this one does not: set "
-                                   "carving::inner_contraction = false");
-    if constexpr (!ShadowingOcclusionPolicy<Occlusion, I>)
-        if (c->occlusion_cuts)
-            throw invalid_argument("paving.occlusion_cuts",
-                                   "carving: occlusion cuts need an occlusion policy modelling "
-                                   "certipose::ShadowingOcclusionPolicy (blockers, shadow), e.g. aabb_occlusion; this "
-                                   "one does not: set carving::occlusion_cuts = false");
+carving paving_steps(const paving_choice& paving) {
+    return carving_steps(paving, ComplementContractingSet<Set, I>, ShadowingOcclusionPolicy<Occlusion, I>);
 }
 
 /// Counters of the position stage.
@@ -150,7 +139,7 @@ struct position_separator {
             if (v == verdict::undecided) {
                 bool certified = false;
                 if constexpr (ComplementContractingSet<Set, I>) {
-                    if (options.steps.inner_contraction && s.rest == 0) {
+                    if (options.steps.inner_contraction.is_on() && s.rest == 0) {
                         box failing = b;
                         set->contract_complement(failing);
                         if (is_empty(failing)) {
@@ -166,7 +155,7 @@ struct position_separator {
                             // box of their own: a piece is often much thinner than the whole, and
                             // most pieces' own walks after a failed one give up too).
                             if constexpr (ShadowingOcclusionPolicy<Occlusion, I>) {
-                                if (!pieces.empty() && options.steps.occlusion_cuts && walker.may_walk(whole, s.seen)) {
+                                if (!pieces.empty() && options.steps.occlusion_cuts.is_on() && walker.may_walk(whole, s.seen)) {
                                     bool covered = false;
                                     box reach = box::empty();
                                     if (!walker.walk(whole, s.seen, false, reach, covered)) s.seen.walk_failed_width = 1.25 * max_width(whole);
@@ -230,7 +219,7 @@ private:
             // One walk of the tree decides VISIBLE (no triangle may block) and finds the
             // shadows for the cuts; the classification's own walk is then needed only to look
             // for an OCCLUDED proof, on a box that one shadow covers whole.
-            if (options.steps.occlusion_cuts && walker.may_walk(b, s.seen)) {
+            if (options.steps.occlusion_cuts.is_on() && walker.may_walk(b, s.seen)) {
                 bool covered = false;
                 box reach = box::empty();
                 if (walker.walk(b, s.seen, full_effort, reach, covered)) {
@@ -367,7 +356,7 @@ public:
     using contractor_type = decltype(std::declval<const Contraction&>().wrap(std::declval<set_contractor_type>()));
 
     /// Throws invalid_argument when the paving choice asks for a step the policies cannot take
-    /// (check_paving) or the set's parameters are bad.
+    /// (paving_steps) or the set's parameters are bad.
     position_stage(const position_problem& problem, std::size_t facet_index, const Occlusion& occlusion,
                    const paving_choice& paving, double position_eps, const constraint_parameters_t<Set>& parameters = {},
                    Contraction contraction = {})
@@ -376,9 +365,7 @@ public:
           occlusion_(&occlusion),
           facet_(facet_index),
           position_eps_(position_eps),
-          rules_(detail::separator_rules::from(paving, position_eps)) {
-        check_paving<Set, Occlusion, I>(paving);
-    }
+          rules_(detail::separator_rules::from(paving_steps<Set, Occlusion, I>(paving), position_eps)) {}
 
     /// The contractor the stage narrows boxes with: the contraction policy's, on the set's.
     /// It refers to this stage's set: use it while the stage lives.

@@ -20,6 +20,7 @@
 #include "certipose/constraints/concept.hpp"
 #include "certipose/paver/paver.hpp"
 #include "certipose/pose/pose_box.hpp"
+#include "certipose/solver/paving.hpp"
 #include "certipose/solver/task.hpp"
 
 namespace certipose {
@@ -41,6 +42,9 @@ struct solve_stats {
     /// False when the occlusion policy does not check constraint 6 (no_occlusion): VALID boxes
     /// then hold for every constraint but occlusion.
     bool occlusion_checked = true;
+    /// The paving steps the run took, every switch decided for its policies (the paper's
+    /// paving: all off; pose_solver::paving_steps).
+    carving paving{};
     std::size_t position_valid = 0;            ///< certified position boxes (before orientation)
     std::size_t position_boundary = 0;
     std::size_t contractions = 0, bisections = 0;
