@@ -8,7 +8,7 @@
 //                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
 //                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
 //                  [--working-distance DMIN,DMAX --min-view-angle RAD] [--mesh-semantics auto|solid|soup]
-//                  [--keep-largest K] [--box-store jsonl|binary|both] [--no-reuse] [--quiet]
+//                  [--keep-largest K] [--box-store binary|jsonl|both] [--no-reuse] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
 // restricted to the --keep-in / --keep-out camera regions before they are written
@@ -18,9 +18,9 @@
 // are balanced over the ranks (part/mpi.hpp), each rank uses --threads threads, and rank 0 writes
 // the one folder, identical to a single-process run's.
 //
-// Writes DIR/summary.json and the boxes (VALID; BOUNDARY ones too with --boundary) as
-// DIR/boxes.jsonl and DIR/boxes.cpbx (the binary store, io/box_store.hpp; --box-store picks
-// one or both), all committed together at the end (io/output_files.hpp): a run that fails
+// Writes DIR/summary.json and the boxes (VALID; BOUNDARY ones too with --boundary) in
+// DIR/boxes.cpbx, the binary store (io/box_store.hpp); --box-store jsonl|both writes
+// DIR/boxes.jsonl, one JSON line per box, instead or as well (about three times the bytes), all committed together at the end (io/output_files.hpp): a run that fails
 // leaves DIR as it was. A mesh that is not a clean closed solid is read as a triangle soup
 // (--mesh-semantics auto), with a warning naming what was found (docs/occlusion.md). SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
 // the summary marked "interrupted", and the exit code is 130/143. Every error is one line
@@ -72,18 +72,18 @@ struct arguments {
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
     std::optional<double> facet_time_limit, time_limit, corner_rest;
     std::optional<std::size_t> keep_largest;
-    bool write_jsonl = true, write_binary = true;  ///< --box-store
+    bool write_jsonl = false, write_binary = true;  ///< --box-store
     scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
 };
 
 /// The parsed command line, or the exit code (0 after --help, 2 after a usage error).
 std::optional<arguments> parse(int argc, char** argv, int& code) {
     CLI::App app{"certipose-part: certified camera pose boxes for every facet of a part, in parallel. Writes "
-                 "DIR/summary.json and DIR/boxes.jsonl (docs/part.md).",
+                 "DIR/summary.json and DIR/boxes.cpbx (docs/part.md).",
                  "certipose-part"};
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
         facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb", keep_largest,
-        box_store = "both";
+        box_store = "binary";
     bool boundary = false, quiet = false, paper_paving = false, grow = false, no_reuse = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
@@ -113,7 +113,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                  "each proven again)");
     app.add_option("--keep-largest", keep_largest, "keep only the K largest VALID boxes of each facet (6D volume)")->type_name("K");
     app.add_option("--box-store", box_store,
-                   "which box files to write: jsonl (boxes.jsonl), binary (boxes.cpbx, docs/part.md) or both (default)")
+                   "which box files to write: binary (boxes.cpbx, the default; docs/part.md), jsonl (boxes.jsonl, one JSON line per box) or both")
         ->type_name("FORMAT")
         ->check(CLI::IsMember({"jsonl", "binary", "both"}));
     scene_options_text scene;

@@ -8,6 +8,7 @@ Needs Debian's python3-matplotlib (a documentation tool only; the library does n
 """
 import json
 import math
+import os
 import sys
 
 import matplotlib
@@ -17,7 +18,29 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import cm, colors  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
+import box_store  # noqa: E402  (boxes.cpbx with numpy, beside this script)
 from render_case_study import read_off  # noqa: E402  (the OFF reader of the other docs picture)
+
+
+def valid_volumes(run_dir, faces):
+    """Litres of certified camera positions per facet: the sum over its VALID boxes, read from
+    the store the run wrote (summary.json settings.box_store; boxes.cpbx by default)."""
+    volume = [0.0] * faces
+    if os.path.exists(os.path.join(run_dir, "boxes.cpbx")):
+        boxes, _ = box_store.read(os.path.join(run_dir, "boxes.cpbx"))
+        valid = boxes[boxes["cls"] == box_store.VALID]
+        widths = valid["position"][:, :, 1] - valid["position"][:, :, 0]
+        for facet, v in zip(valid["facet"], widths.prod(axis=1) * 1e3):
+            volume[facet] += float(v)
+        return volume
+    with open(os.path.join(run_dir, "boxes.jsonl")) as f:
+        for line in f:
+            b = json.loads(line)
+            if b["class"] != "valid":
+                continue
+            (x0, x1), (y0, y1), (z0, z1) = b["position"]
+            volume[b["facet"]] += (x1 - x0) * (y1 - y0) * (z1 - z0) * 1e3
+    return volume
 
 
 def main(off_path, run_dir, out_path):
@@ -26,14 +49,7 @@ def main(off_path, run_dir, out_path):
         summary = json.load(f)
     scale = summary["mesh"].get("scale", 1.0)
     verts = [tuple(scale * c for c in v) for v in verts]
-    volume = [0.0] * len(faces)
-    with open(f"{run_dir}/boxes.jsonl") as f:
-        for line in f:
-            b = json.loads(line)
-            if b["class"] != "valid":
-                continue
-            (x0, x1), (y0, y1), (z0, z1) = b["position"]
-            volume[b["facet"]] += (x1 - x0) * (y1 - y0) * (z1 - z0) * 1e3  # litres
+    volume = valid_volumes(run_dir, len(faces))
     skipped = {r["index"] for r in summary["facets"] if r["termination"] == "skipped"}
     solved = {r["index"] for r in summary["facets"]}
     positive = [v for v in volume if v > 0]

@@ -15,7 +15,7 @@ rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 --facets 880-920 \
-    --out run --quiet || fail "certipose-part failed"
+    --box-store both --out run --quiet || fail "certipose-part failed"
 
 # Reuse between translates (docs/part.md#reuse-between-translates): bottom facets of one shape
 # take the first one's boxes, recorded in summary.json; --no-reuse paves each on its own.

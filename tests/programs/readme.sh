@@ -17,7 +17,7 @@ awk '/<!-- readme-walkthrough: begin -->/{on=1; next} /<!-- readme-walkthrough: 
 [ "$(grep -c 'certipose-' walkthrough.sh)" -ge 9 ] || fail "the README's walkthrough block was not found"
 bash -euo pipefail walkthrough.sh > out 2> err || fail "the README's walkthrough failed: $(tail -5 err)"
 
-for f in facet900.json facet900.ply part-run/summary.json part-run/boxes.jsonl plan.json verify.json \
+for f in facet900.json facet900.ply part-run/summary.json part-run/boxes.cpbx plan.json verify.json \
          plan.csv plan.yaml plan.urdf plan.glb plan.html; do
     [ -s "$f" ] || fail "the walkthrough did not write $f"
 done

@@ -146,9 +146,9 @@ EOF
 [ "$(valid_of bottom_plate.json)" -eq 0 ] || fail "solve: the plate does not hide the bottom facet"
 
 # ---- certipose-part ----------------------------------------------------------------------------
-"$part" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facets "$bottom,$wall" --out run_free --quiet \
+"$part" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facets "$bottom,$wall" --out run_free --quiet --box-store both \
     || fail "part (no scene) failed"
-"$part" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facets "$bottom,$wall" --out run --quiet --boundary \
+"$part" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facets "$bottom,$wall" --out run --quiet --boundary --box-store both \
     --occluder "$plate" --keep-out "$below" --keep-out "$side" 2>err || fail "part (plate, keep-outs) failed: $(cat err)"
 [ "$(entering run/boxes.jsonl -2 -2 -2 2 2 -0.01)" -eq 0 ] || fail "part: a VALID box enters the keep-out below the plate"
 [ "$(entering run/boxes.jsonl -2 -2 -0.01 -0.5 2 2)" -eq 0 ] || fail "part: a VALID box enters the side keep-out"

@@ -37,7 +37,7 @@ for sig in INT TERM; do
 
   out=$work/part-$sig
   signal_after $sig 3 "$part" --mesh "$mesh" --camera "$camera" --position-eps 0.1 --orientation-eps 0.38 \
-      --threads 2 --out "$out" --quiet 2>"$work/part-$sig.stderr"
+      --threads 2 --box-store both --out "$out" --quiet 2>"$work/part-$sig.stderr"
   rc=$?
   [ $rc -eq "$expected" ] || fail "certipose-part on SIG$sig exited $rc, expected $expected: $(cat "$work/part-$sig.stderr")"
   [ -f "$out/summary.json" ] && [ -f "$out/boxes.jsonl" ] && [ -f "$out/boxes.cpbx" ] ||

@@ -23,7 +23,7 @@ CAMERA = str(ROOT / "examples" / "data" / "camera.json")
 def run(tmp_path_factory):
     out = tmp_path_factory.mktemp("run") / "part"
     subprocess.run([PART, "--mesh", MESH, "--camera", CAMERA, "--position-eps", "0.4", "--orientation-eps", "0.38",
-                    "--facets", "0-5,700", "--boundary", "--threads", "2", "--out", str(out), "-q"], check=True)
+                    "--facets", "0-5,700", "--boundary", "--threads", "2", "--box-store", "both", "--out", str(out), "-q"], check=True)
     return out
 
 
