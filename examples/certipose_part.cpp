@@ -8,7 +8,7 @@
 //                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
 //                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
 //                  [--working-distance DMIN,DMAX --min-view-angle RAD] [--mesh-semantics auto|solid|soup]
-//                  [--keep-largest K] [--box-store binary|jsonl|both] [--no-reuse] [--quiet]
+//                  [--keep-largest K] [--box-store binary|jsonl|both] [--no-reuse] [--resume] [--quiet]
 //
 // --occluder meshes join the part in the occlusion scene; each facet's VALID boxes are
 // restricted to the --keep-in / --keep-out camera regions before they are written
@@ -20,21 +20,27 @@
 //
 // Writes DIR/summary.json and the boxes (VALID; BOUNDARY ones too with --boundary) in
 // DIR/boxes.cpbx, the binary store (io/box_store.hpp); --box-store jsonl|both writes
-// DIR/boxes.jsonl, one JSON line per box, instead or as well (about three times the bytes), all committed together at the end (io/output_files.hpp): a run that fails
-// leaves DIR as it was. A mesh that is not a clean closed solid is read as a triangle soup
-// (--mesh-semantics auto), with a warning naming what was found (docs/occlusion.md). SIGINT/SIGTERM stop the run through its cancellation; the facets finished are written,
-// the summary marked "interrupted", and the exit code is 130/143. Every error is one line
-// "certipose-part: ..." on stderr: exit 1 for bad input files, solver or write errors, 2 for a
-// bad command line. A progress line (facets, rate, ETA, memory) goes to stderr when it is a
-// terminal.
+// DIR/boxes.jsonl, one JSON line per box, instead or as well (about three times the bytes).
+// While it runs, the stores grow in DIR/run-in-progress/ with a journal of the facets finished,
+// made durable every second (io/run_journal.hpp); at the end they move onto DIR/ with the
+// summary. A run that a kill, a power loss or a full disk ends leaves DIR's earlier files as
+// they were and the unfinished run beside them: --resume (same command) continues it, and a
+// different input or setting is refused, naming it. A mesh that is not a clean closed solid is
+// read as a triangle soup (--mesh-semantics auto), with a warning naming what was found
+// (docs/occlusion.md). SIGINT/SIGTERM stop the run through its cancellation; the facets
+// finished are written, the summary marked "interrupted", and the exit code is 130/143
+// (--resume continues it too). Every error is one line "certipose-part: ..." on stderr: exit 1
+// for bad input files, solver or write errors, 2 for a bad command line. A progress line
+// (facets, rate, ETA, memory) goes to stderr when it is a terminal.
 #include "program_support.hpp"
 #include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
-#include <certipose/io/output_files.hpp>
+#include <certipose/io/output_files.hpp>  // refuse_overwriting_inputs
 #include <certipose/io/box_store.hpp>
 #include <certipose/io/part_files.hpp>
+#include <certipose/io/run_journal.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
 #if defined(CERTIPOSE_PART_MPI)
@@ -43,7 +49,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -51,7 +59,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -66,7 +78,7 @@ struct arguments {
     double position_eps = 0.1, orientation_eps = 0.38, scale = 1.0;
     std::size_t threads = 0;
     std::string facets;
-    bool boundary = false, quiet = false, paper_paving = false, grow = false, reuse = true;
+    bool boundary = false, quiet = false, paper_paving = false, grow = false, reuse = true, resume = false;
     std::optional<double> refine;
     std::string occlusion = "aabb";
     std::optional<std::size_t> max_boxes_per_facet, max_boxes, corner_depth;
@@ -84,7 +96,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
     std::string mesh, camera, out, position_eps, orientation_eps, scale, threads, facets, per_facet_boxes,
         facet_time, time_limit, max_boxes, refine, corner_depth, corner_rest, occlusion = "aabb", keep_largest,
         box_store = "binary";
-    bool boundary = false, quiet = false, paper_paving = false, grow = false, no_reuse = false;
+    bool boundary = false, quiet = false, paper_paving = false, grow = false, no_reuse = false, resume = false;
     app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
     app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
     app.add_option("--position-eps", position_eps, "position threshold, metres (paper: 0.1)")->type_name("METRES")->required();
@@ -116,6 +128,9 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                    "which box files to write: binary (boxes.cpbx, the default; docs/part.md), jsonl (boxes.jsonl, one JSON line per box) or both")
         ->type_name("FORMAT")
         ->check(CLI::IsMember({"jsonl", "binary", "both"}));
+    app.add_flag("--resume", resume,
+                 "continue the run in DIR that a kill, a signal, a full disk, --time-limit or --max-boxes ended, "
+                 "with the same inputs and settings (docs/part.md)");
     scene_options_text scene;
     add_scene_options(app, scene);
     app.add_flag("--quiet,-q", quiet, "print nothing but errors");
@@ -142,6 +157,7 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         if (!corner_rest.empty()) a.corner_rest = parse_corner_rest(corner_rest);
         a.grow = grow;
         a.reuse = !no_reuse;
+        a.resume = resume;
         if (!keep_largest.empty()) a.keep_largest = parse_count("--keep-largest", keep_largest, 1);
         a.write_jsonl = box_store != "binary";
         a.write_binary = box_store != "jsonl";
@@ -211,10 +227,65 @@ struct rank_failure : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// A failure during the run whose message is complete (it says what is kept for --resume).
+struct run_failure : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 /// Discards what it is given (the sink of MPI ranks other than 0, which write nothing).
 struct null_sink {
     void facet(const certipose::facet_outcome<certipose::boost_interval>&) {}
 };
+
+/// Rank 0's values of `v` on every rank (nothing to do without MPI).
+void broadcast(std::array<std::int64_t, 2>& v, process proc) {
+#if defined(CERTIPOSE_PART_MPI)
+    if (proc.ranks > 1) MPI_Bcast(v.data(), 2, MPI_INT64_T, 0, MPI_COMM_WORLD);
+#else
+    (void)v, (void)proc;
+#endif
+}
+
+/// The run's journal (io/run_journal.hpp): the unfinished run continued with --resume, else a
+/// new one. Returns how many facets of `selection` are done (their boxes in `boxes_done`), or
+/// -2 when --resume finds the run complete.
+std::int64_t prepare_journal(const arguments& args, const certipose::part_summary& s, const std::vector<std::size_t>& selection,
+                             std::optional<certipose::part_run_journal>& journal, std::size_t& boxes_done) {
+    using certipose::part_run_journal;
+    const nlohmann::json key =
+        certipose::resume_key(nlohmann::json::parse(certipose::json_text(certipose::part_summary_to_json(s))));
+    std::vector<std::string> stores;
+    if (args.write_binary) stores.emplace_back("boxes.cpbx");
+    if (args.write_jsonl) stores.emplace_back("boxes.jsonl");
+    const fs::path unfinished = args.out / std::string(part_run_journal::folder_name);
+    std::error_code ec;
+    if (args.resume) {
+        switch (part_run_journal::resume(args.out, key, stores, journal)) {
+            case part_run_journal::found::complete:
+                if (!args.quiet) std::printf("%s: the run there is complete; nothing to resume\n", args.out.string().c_str());
+                return -2;
+            case part_run_journal::found::nothing:
+                if (!args.quiet)
+                    std::fprintf(stderr, "certipose-part: nothing to resume in %s: starting the run\n", args.out.string().c_str());
+                break;
+            case part_run_journal::found::unfinished: break;
+        }
+    } else if (fs::exists(unfinished, ec) && !args.quiet) {
+        std::fprintf(stderr, "certipose-part: note: starting over; the unfinished run in %s is discarded (--resume continues it)\n",
+                     unfinished.string().c_str());
+    }
+    if (!journal) journal.emplace(part_run_journal::start(args.out, key, stores));
+    const auto& done = journal->done().facets;
+    for (std::size_t i = 0; i < done.size(); ++i)
+        if (i >= selection.size() || done[i].index != selection[i])
+            throw certipose::invalid_argument(
+                "--resume", "--resume: the run in " + args.out.string() + " finished facet " + std::to_string(done[i].index) +
+                                (i < selection.size() ? " where this selection has facet " + std::to_string(selection[i])
+                                                      : " beyond this selection") +
+                                "; run without --resume to start over");
+    for (const auto& f : done) boxes_done += f.valid + f.boundary;
+    return static_cast<std::int64_t>(done.size());
+}
 
 /// Runs the part and writes the folder; returns the exit code.
 template <class Occlusion>
@@ -247,48 +318,8 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     opt.regions = args.scene.regions;  // each facet's VALID boxes, before they are written
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
     opt.stop = signals.token();
-    const bool progress = proc.rank == 0 && show_progress(args.quiet);
-    if (progress)
-        opt.progress = [](const certipose::part_progress& p) {
-            const double rate = p.seconds > 0 ? static_cast<double>(p.facets_done) / p.seconds : 0.0;
-            std::fprintf(stderr, "\r\033[K%7zu / %zu facets  %9zu valid  %7.1f facets/s  ETA %-8s  %6.0f MB", p.facets_done,
-                         p.facets_total, p.valid, rate, duration_text(p.seconds_left).c_str(),
-                         static_cast<double>(resident_bytes()) / 1e6);
-            return true;
-        };
-
-    const auto solve = [&](auto& sink) {
-#if defined(CERTIPOSE_PART_MPI)
-        // Every rank reads the same inputs, so errors before this point happen on all of them and
-        // each returns. An error during the run is one rank's alone (rank 0's disk full, a
-        // worker's failure) while the others wait for its messages: it must name the rank and
-        // end the job, not return into MPI_Finalize and leave the others hanging. main() does
-        // that on rank_failure, once this rank's staged files are unwound and removed.
-        try {
-            return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
-        } catch (const std::exception& e) {
-            throw rank_failure(e.what());
-        }
-#else
-        return part.solve(opt, sink);
-#endif
-    };
-    if (proc.rank != 0) {  // a worker rank: solves what rank 0 hands out, writes nothing
-        null_sink nothing;
-        (void)solve(nothing);
-        return signals.interrupted() ? signals.exit_code() : exit_ok;
-    }
-    fs::create_directories(args.out);
-    certipose::output_files files;
-    std::optional<certipose::jsonl_sink<I>> jsonl;
-    std::optional<certipose::box_store_sink<I>> binary;
-    if (args.write_jsonl) jsonl.emplace(files.stream(args.out / "boxes.jsonl"), certipose::checks_occlusion<Occlusion>);
-    if (args.write_binary) binary.emplace(files.stream(args.out / "boxes.cpbx"), certipose::checks_occlusion<Occlusion>);
-    certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> sink{
-        {jsonl ? &*jsonl : nullptr, binary ? &*binary : nullptr}};
-    const certipose::part_result r = solve(sink);
-    if (progress) std::fputc('\n', stderr);
-
+    // The summary's record of the run, all but its results: what a resumed run must share with
+    // the run it continues (io/run_journal.hpp).
     certipose::part_summary s;
     s.mesh = {args.mesh.string(), mesh.num_faces(), args.scale, certipose::mesh_digest(mesh)};
     certipose::describe_camera(s, part.solver().camera(), input.task);
@@ -303,16 +334,122 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     s.settings.occlusion_checked = certipose::checks_occlusion<Occlusion>;
     describe_run_settings<std::decay_t<decltype(part)>>(s, args, opt.facet, part.solver().occlusion());
     s.scene = extra.record;
-    s.facets = r.facets;
-    s.totals = {r.seconds, r.threads, static_cast<std::size_t>(proc.ranks), r.facets_selected, r.facets.size(), r.valid,
-                r.boundary, r.skipped, r.reason, signals.interrupted()};
-    if (args.write_jsonl) files.close(args.out / "boxes.jsonl");
-    if (binary) {
-        binary->finish();
-        files.close(args.out / "boxes.cpbx");
+
+    std::vector<std::size_t> selection = opt.facets;
+    if (selection.empty())
+        for (std::size_t f = 0; f < mesh.num_faces(); ++f) selection.push_back(f);
+    // Rank 0 keeps the journal and tells the other ranks where the selection resumes (-1 after
+    // an error there, which it reports; -2 when the run is already complete) and how many boxes
+    // the facets before hold (the run's box budget: every rank must agree on what is left).
+    std::optional<certipose::part_run_journal> journal;
+    std::array<std::int64_t, 2> resume{0, 0};
+    if (proc.rank == 0) {
+        try {
+            std::size_t boxes = 0;
+            resume[0] = prepare_journal(args, s, selection, journal, boxes);
+            resume[1] = static_cast<std::int64_t>(boxes);
+        } catch (...) {
+            resume[0] = -1;
+            broadcast(resume, proc);
+            throw;
+        }
     }
-    files.add(args.out / "summary.json", certipose::json_text(certipose::part_summary_to_json(s)));
-    files.commit();
+    broadcast(resume, proc);
+    if (resume[0] == -1) return exit_failure;  // another rank: rank 0 says why
+    if (resume[0] == -2) return exit_ok;
+    const auto first = static_cast<std::size_t>(resume[0]);
+    const auto boxes_done = static_cast<std::size_t>(resume[1]);
+    opt.facets.assign(selection.begin() + static_cast<std::ptrdiff_t>(first), selection.end());
+    // Nothing left: every facet selected is done, or the box budget is spent.
+    const bool budget_spent = args.max_boxes && boxes_done >= *args.max_boxes;
+    const bool nothing_left = opt.facets.empty() || budget_spent;
+    if (args.max_boxes && !budget_spent) opt.max_boxes = *args.max_boxes - boxes_done;
+
+    const bool progress = proc.rank == 0 && show_progress(args.quiet);
+    std::size_t valid_done = 0;  // by the runs this one continues
+    if (journal)
+        for (const auto& f : journal->done().facets) valid_done += f.valid;
+    if (progress)
+        opt.progress = [first, valid_done, total = selection.size()](const certipose::part_progress& p) {
+            const std::size_t valid = valid_done + p.valid;
+            const double rate = p.seconds > 0 ? static_cast<double>(p.facets_done) / p.seconds : 0.0;
+            std::fprintf(stderr, "\r\033[K%7zu / %zu facets  %9zu valid  %7.1f facets/s  ETA %-8s  %6.0f MB",
+                         first + p.facets_done, total, valid, rate, duration_text(p.seconds_left).c_str(),
+                         static_cast<double>(resident_bytes()) / 1e6);
+            return true;
+        };
+
+    const auto solve = [&](auto& sink) -> certipose::part_result {
+        if (nothing_left) return {};  // (an empty opt.facets would mean every facet)
+        try {
+#if defined(CERTIPOSE_PART_MPI)
+            return certipose::solve_part_mpi(part, opt, sink, MPI_COMM_WORLD);
+#else
+            return part.solve(opt, sink);
+#endif
+        } catch (const std::exception& e) {
+            std::string message = e.what();
+            if (journal)
+                message += "; the facets finished so far are kept in " + journal->folder().string() +
+                           ": run the same command with --resume to continue";
+#if defined(CERTIPOSE_PART_MPI)
+            // Every rank reads the same inputs, so errors before this point happen on all of them
+            // and each returns. An error during the run is one rank's alone (rank 0's disk full, a
+            // worker's failure) while the others wait for its messages: it must name the rank and
+            // end the job, not return into MPI_Finalize and leave the others hanging. main() does
+            // that on rank_failure, once this rank's own files are closed.
+            throw rank_failure(message);
+#else
+            throw run_failure(message);
+#endif
+        }
+    };
+    if (proc.rank != 0) {  // a worker rank: solves what rank 0 hands out, writes nothing
+        null_sink nothing;
+        (void)solve(nothing);
+        return signals.interrupted() ? signals.exit_code() : exit_ok;
+    }
+    const bool resumed = !journal->done().facets.empty() || first > 0;
+    std::optional<certipose::jsonl_sink<I>> jsonl;
+    std::optional<certipose::box_store_sink<I>> binary;
+    if (args.write_jsonl) jsonl.emplace(journal->store("boxes.jsonl"), certipose::checks_occlusion<Occlusion>);
+    if (args.write_binary) {
+        std::ostream& out = journal->store("boxes.cpbx");
+        const auto at = static_cast<std::size_t>(out.tellp());
+        if (at == 0)
+            binary.emplace(out, certipose::checks_occlusion<Occlusion>);
+        else  // a resumed store: its header and the records of the facets done are kept
+            binary.emplace(certipose::box_store_sink<I>::continuing(
+                out, (at - certipose::box_store_layout::header_bytes) / certipose::box_store_layout::record_bytes));
+    }
+    journal->checkpoint();  // the stores' headers, durable before the first facet
+    certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> stores{
+        {jsonl ? &*jsonl : nullptr, binary ? &*binary : nullptr}};
+    certipose::journal_sink<decltype(stores)> sink{&stores, &*journal};
+    const certipose::part_result r = solve(sink);
+    if (progress) std::fputc('\n', stderr);
+
+    s.facets = journal->done().facets;
+    s.facets.insert(s.facets.end(), r.facets.begin(), r.facets.end());
+    std::size_t valid = 0, boundary = 0, skipped = 0;
+    for (const auto& f : s.facets) {
+        valid += f.valid;
+        boundary += f.boundary;
+        skipped += f.termination == certipose::facet_termination::skipped;
+    }
+    const certipose::termination reason = s.facets.size() == selection.size() ? certipose::termination::completed
+                                          : budget_spent                       ? certipose::termination::box_budget
+                                                                               : r.reason;
+    const std::size_t threads = r.threads ? r.threads : (args.threads ? args.threads : std::thread::hardware_concurrency());
+    s.totals = {journal->seconds(), threads, static_cast<std::size_t>(proc.ranks), selection.size(), s.facets.size(), valid,
+                boundary, skipped, reason, signals.interrupted()};
+    try {
+        if (binary) binary->finish();
+        journal->commit(certipose::json_text(certipose::part_summary_to_json(s)));
+    } catch (const certipose::error& e) {
+        throw run_failure(std::string(e.what()) + "; the facets finished are kept in " + journal->folder().string() +
+                          ": run the same command with --resume to finish");
+    }
     // A box file of an earlier run in this folder that this run did not write would contradict
     // the new summary (which names the stores it wrote, settings.box_store): remove it.
     std::error_code gone;
@@ -322,11 +459,13 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     if (!args.quiet) {
         std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %d rank(s) x %zu threads: %zu valid, %zu boundary "
                     "boxes, %zu facets skipped\n",
-                    args.mesh.string().c_str(), mesh.num_faces(), r.facets.size(), r.facets_selected, r.seconds, proc.ranks,
-                    r.threads, r.valid, r.boundary, r.skipped);
-        if (r.reason != certipose::termination::completed)
-            std::printf("  stopped early: %s ended the run; the facets finished are written\n",
-                        signals.interrupted() ? interruption::name(signals.signal()) : certipose::to_string(r.reason));
+                    args.mesh.string().c_str(), mesh.num_faces(), s.facets.size(), selection.size(), s.totals.seconds, proc.ranks,
+                    threads, valid, boundary, skipped);
+        if (resumed)
+            std::printf("  resumed: %zu facet(s) were finished by the run it continues\n", journal->done().facets.size());
+        if (reason != certipose::termination::completed)
+            std::printf("  stopped early: %s ended the run; the facets finished are written (--resume continues it)\n",
+                        signals.interrupted() ? interruption::name(signals.signal()) : certipose::to_string(reason));
         if (!certipose::checks_occlusion<Occlusion>)
             std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint but occlusion\n");
         if (const std::string text = scene_text(args.scene); !text.empty()) std::printf("  scene: %s\n", text.c_str());
@@ -396,6 +535,8 @@ int main(int argc, char** argv) {
         if (proc.ranks > 1) MPI_Abort(MPI_COMM_WORLD, exit_failure);
 #endif
         return exit_failure;
+    } catch (const run_failure& e) {
+        return report(e.what());
     } catch (const certipose::error& e) {
         return report(e.what());
     } catch (const std::exception& e) {

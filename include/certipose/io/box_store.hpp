@@ -100,6 +100,10 @@ public:
         check();
     }
 
+    /// Continues a store whose header and first `records` records `out` already holds, from its
+    /// end (a resumed run, io/run_journal.hpp).
+    static box_store_sink continuing(std::ostream& out, std::size_t records) { return box_store_sink(out, records); }
+
     void facet(const facet_outcome<I>& o) {
         if (o.record.index > 0xffffffffu)
             throw invalid_argument("facet", "boxes.cpbx: facet index " + std::to_string(o.record.index) +
@@ -134,6 +138,7 @@ public:
     }
 
 private:
+    box_store_sink(std::ostream& out, std::size_t records) : out_(&out), records_(records) {}
     void check() const {
         if (!*out_) throw io_error("boxes.cpbx", "boxes.cpbx: write failed (disk full?)");
     }

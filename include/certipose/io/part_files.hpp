@@ -180,6 +180,52 @@ void describe_camera(part_summary& s, const C& camera, const inspection_task& ta
     s.task = {task.min_view_angle, task.max_metres_per_pixel, task.placement};
 }
 
+/// One element of summary.json's "facets" (keys in the documented order).
+inline nlohmann::ordered_json facet_record_to_json(const facet_record& f) {
+    using namespace detail::json_io;
+    ordered_json r;
+    r["index"] = f.index;
+    r["valid"] = f.valid;
+    r["boundary"] = f.boundary;
+    r["seconds"] = finite(f.seconds, "facets.seconds");
+    r["termination"] = to_string(f.termination);
+    if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
+    if (f.dropped > 0) r["dropped"] = f.dropped;
+    if (f.reused_from) r["reused_from"] = *f.reused_from;
+    if (f.boundary > 0) {
+        ordered_json reasons;
+        for (std::size_t k = 0; k < boundary_reason_count; ++k)
+            if (f.boundary_reasons[k]) reasons[std::string(to_string(static_cast<boundary_reason>(k)))] = f.boundary_reasons[k];
+        r["boundary_reasons"] = std::move(reasons);
+    }
+    return r;
+}
+
+/// Reads one element of summary.json's "facets"; `path` names it in errors ("facets[3]").
+inline facet_record facet_record_from_json(const nlohmann::json& element, const std::string& path) {
+    using namespace detail::json_io;
+    const json& f = require_object(element, path);
+    facet_record r;
+    r.index = as_count(require(f, path, "index", "an integer"), child(path, "index"));
+    r.valid = as_count(require(f, path, "valid", "an integer"), child(path, "valid"));
+    r.boundary = as_count(require(f, path, "boundary", "an integer"), child(path, "boundary"));
+    r.seconds = required_number(f, path, "seconds");
+    const std::string t = as_string(require(f, path, "termination", "a string"), child(path, "termination"), "a string");
+    const auto term = facet_termination_from_string(t);
+    if (!term) fail(child(path, "termination"), "unknown termination \"" + t + "\"");
+    r.termination = *term;
+    if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
+    if (const json* dropped = find(f, "dropped")) r.dropped = as_count(*dropped, child(path, "dropped"));
+    if (const json* from = find(f, "reused_from")) r.reused_from = as_count(*from, child(path, "reused_from"));
+    if (const json* reasons = find(f, "boundary_reasons")) {
+        require_object(*reasons, child(path, "boundary_reasons"));
+        for (std::size_t k = 0; k < boundary_reason_count; ++k)
+            if (const json* v = find(*reasons, to_string(static_cast<boundary_reason>(k))))
+                r.boundary_reasons[k] = as_count(*v, child(child(path, "boundary_reasons"), to_string(static_cast<boundary_reason>(k))));
+    }
+    return r;
+}
+
 /// summary.json as JSON (keys in the documented order).
 inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     using namespace detail::json_io;
@@ -230,24 +276,7 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     }
     put_scene(j, s.scene);
     ordered_json facets = ordered_json::array();
-    for (const facet_record& f : s.facets) {
-        ordered_json r;
-        r["index"] = f.index;
-        r["valid"] = f.valid;
-        r["boundary"] = f.boundary;
-        r["seconds"] = finite(f.seconds, "facets.seconds");
-        r["termination"] = to_string(f.termination);
-        if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
-        if (f.dropped > 0) r["dropped"] = f.dropped;
-        if (f.reused_from) r["reused_from"] = *f.reused_from;
-        if (f.boundary > 0) {
-            ordered_json reasons;
-            for (std::size_t k = 0; k < boundary_reason_count; ++k)
-                if (f.boundary_reasons[k]) reasons[std::string(to_string(static_cast<boundary_reason>(k)))] = f.boundary_reasons[k];
-            r["boundary_reasons"] = std::move(reasons);
-        }
-        facets.push_back(std::move(r));
-    }
+    for (const facet_record& f : s.facets) facets.push_back(facet_record_to_json(f));
     j["facets"] = std::move(facets);
     const auto& t = s.totals;
     j["totals"] = {{"seconds", finite(t.seconds, "totals.seconds")},
@@ -307,29 +336,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
     s.scene = scene_from_json(j);
     const json& facets = require(j, "", "facets", "an array");
     if (!facets.is_array()) fail("facets", "expected an array, got " + describe(facets));
-    for (std::size_t i = 0; i < facets.size(); ++i) {
-        const std::string path = element("facets", i);
-        const json& f = require_object(facets[i], path);
-        facet_record r;
-        r.index = as_count(require(f, path, "index", "an integer"), child(path, "index"));
-        r.valid = as_count(require(f, path, "valid", "an integer"), child(path, "valid"));
-        r.boundary = as_count(require(f, path, "boundary", "an integer"), child(path, "boundary"));
-        r.seconds = required_number(f, path, "seconds");
-        const std::string t = as_string(require(f, path, "termination", "a string"), child(path, "termination"), "a string");
-        const auto term = facet_termination_from_string(t);
-        if (!term) fail(child(path, "termination"), "unknown termination \"" + t + "\"");
-        r.termination = *term;
-        if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
-        if (const json* dropped = find(f, "dropped")) r.dropped = as_count(*dropped, child(path, "dropped"));
-        if (const json* from = find(f, "reused_from")) r.reused_from = as_count(*from, child(path, "reused_from"));
-        if (const json* reasons = find(f, "boundary_reasons")) {
-            require_object(*reasons, child(path, "boundary_reasons"));
-            for (std::size_t k = 0; k < boundary_reason_count; ++k)
-                if (const json* v = find(*reasons, to_string(static_cast<boundary_reason>(k))))
-                    r.boundary_reasons[k] = as_count(*v, child(child(path, "boundary_reasons"), to_string(static_cast<boundary_reason>(k))));
-        }
-        s.facets.push_back(std::move(r));
-    }
+    for (std::size_t i = 0; i < facets.size(); ++i) s.facets.push_back(facet_record_from_json(facets[i], element("facets", i)));
     const json& totals = require_object(require(j, "", "totals", "an object"), "totals");
     auto& t = s.totals;
     t.seconds = required_number(totals, "totals", "seconds");
