@@ -236,7 +236,7 @@ TEST_CASE("part: the progress estimate weighs each facet by its search box, and 
     const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
     for (std::size_t f : {std::size_t{0}, part().facet_of_interest}) CHECK(whole.work_estimate(f) > 0.0);
     const std::vector<std::size_t> two{part().facet_of_interest, part().facet_of_interest};
-    const detail::work_meter meter(whole, two);
+    const detail::work_meter meter(two, [&](std::size_t f) { return whole.work_estimate(f); });
     CHECK(meter.seconds_left(1, 3.0) == doctest::Approx(3.0));
     CHECK(meter.seconds_left(2, 3.0) == 0.0);
     CHECK(meter.seconds_left(0, 3.0) == 0.0);
@@ -397,4 +397,63 @@ TEST_CASE("part: sampled poses in the VALID boxes of 50+ random facets of two re
         CHECK(samples >= 1000);
         CHECK(violations == 0);
     }
+}
+
+TEST_CASE("run_context: one token for the caller's stop and the run's own, the first reason kept") {
+    std::stop_source caller;
+    run_context run(caller.get_token(), std::chrono::hours(1));
+    CHECK_FALSE(run.out_of_time());
+    CHECK(run.reason() == termination::completed);
+    CHECK(run.deadline().has_value());
+    run.stop(termination::box_budget);
+    run.stop(termination::cancelled);  // later reasons do not replace the first
+    CHECK(run.token().stop_requested());
+    CHECK(run.reason() == termination::box_budget);
+    CHECK_FALSE(caller.stop_requested());  // the run's stop does not touch the caller's token
+
+    std::stop_source user;
+    const run_context cancelled(user.get_token());
+    user.request_stop();
+    CHECK(cancelled.token().stop_requested());
+    CHECK(cancelled.reason() == termination::cancelled);
+    const run_context late({}, std::chrono::steady_clock::duration(0));
+    CHECK(late.past_deadline());
+    CHECK(late.out_of_time());
+    CHECK(late.reason() == termination::completed);  // a deadline is a reason once someone stops for it
+}
+
+TEST_CASE("part_schedule: the selection, the box budget in order, and what the sink sees") {
+    part_options o;
+    o.facets = {4, 2, 9};
+    o.max_boxes = 5;
+    const auto unit = [](std::size_t) { return 1.0; };
+    part_schedule schedule(o, 10, unit);
+    CHECK(schedule.selection() == std::vector<std::size_t>{4, 2, 9});
+    collecting_sink<boost_interval> sink;
+    std::vector<std::size_t> issued;
+    while (const auto w = schedule.next()) {
+        issued.push_back(w->facet);
+        facet_outcome<boost_interval> out;
+        out.record.index = w->facet;
+        out.record.valid = 3;
+        schedule.emit(sink, out);
+    }
+    // 3 + 3 boxes cross the budget of 5 after the second facet: the third is never handed out.
+    CHECK(issued == std::vector<std::size_t>{4, 2});
+    REQUIRE(sink.outcomes.size() == 2);
+    const part_result r = schedule.finish(1);
+    CHECK(r.reason == termination::box_budget);
+    CHECK(r.valid == 6);
+    CHECK(r.facets_selected == 3);
+    CHECK(r.facets.size() == 2);
+
+    part_options all;
+    part_schedule every(all, 4, unit);
+    CHECK(every.selection() == std::vector<std::size_t>{0, 1, 2, 3});
+    part_options outside;
+    outside.facets = {7};
+    CHECK_THROWS_AS(part_schedule(outside, 4, unit), certipose::out_of_range);
+    part_options zero;
+    zero.max_boxes = 0;
+    CHECK_THROWS_WITH_AS(part_schedule(zero, 4, unit), doctest::Contains("max_boxes"), certipose::invalid_argument);
 }

@@ -159,11 +159,12 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &ranks);
 
-    std::vector<std::size_t> selection = options.facets;
-    if (selection.empty()) {
-        selection.resize(part.solver().part().num_faces());
-        for (std::size_t i = 0; i < selection.size(); ++i) selection[i] = i;
-    }
+    // The selection, the run's budgets, stop and progress, and the order of results: the same
+    // scheduler as a oneTBB run's (part/scheduler.hpp), used on rank 0; the others only read
+    // the selection to cut chunks.
+    part_schedule schedule(options, part.solver().part().num_faces(), [&](std::size_t f) { return part.work_estimate(f); });
+    const std::vector<std::size_t>& selection = schedule.selection();
+    run_context& run = schedule.context();
     const std::size_t per_chunk = mpi.chunk ? mpi.chunk
                                             : std::clamp<std::size_t>(selection.size() / (64 * static_cast<std::size_t>(ranks)), 1, 16);
     const std::size_t chunks = (selection.size() + per_chunk - 1) / per_chunk;
@@ -190,15 +191,9 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
         return std::move(w.bytes);
     };
 
-    part_result out;
-    out.facets_selected = selection.size();
-    const auto start = clock::now();
-
-    detail::work_meter meter;  // rank 0's progress estimate (part_progress::seconds_left)
-    if (rank == 0 && options.progress) meter = detail::work_meter(part, selection);
-
     if (rank != 0) {  // ---- a worker: ask, solve, send, until told to stop ---------------------
-        out.facets_selected = 0;
+        part_result out;
+        const auto start = clock::now();
         for (;;) {
             const int dummy = 0;
             MPI_Send(&dummy, 1, MPI_INT, 0, pm::request, comm);
@@ -214,9 +209,7 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     }
 
     // ---- rank 0: hand out chunks, solve some itself, emit in order --------------------------------
-    std::size_t next_chunk = 0, next_emit = 0, boxes_total = 0;
-    bool stopping = false;
-    termination why = termination::completed;
+    std::size_t next_chunk = 0, next_emit = 0;
     std::map<std::size_t, std::string> finished;  // chunk → its encoded result
     std::vector<int> waiting;                     // workers whose request is not answered yet
     int workers_left = ranks - 1;
@@ -267,44 +260,26 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
         ~local_joiner() { stop(); }
     } joiner{stop_local};
     const std::size_t window = std::max<std::size_t>(1, mpi.window) * static_cast<std::size_t>(ranks);
-    const auto may_hand_out = [&] { return !stopping && next_chunk < chunks && next_chunk < next_emit + window; };
+    const auto may_hand_out = [&] { return !run.stop_requested() && next_chunk < chunks && next_chunk < next_emit + window; };
     bool local_busy = false;
 
     const auto emit_ready = [&] {
-        while (!stopping) {
+        while (!run.stop_requested()) {
             const auto it = finished.find(next_emit);
             if (it == finished.end()) return;
             pm::reader rd{it->second};
             rd.get<std::uint64_t>();
             const bool complete = rd.get<std::uint8_t>() != 0;
             const auto n = rd.get<std::uint64_t>();
-            for (std::uint64_t i = 0; i < n && !stopping; ++i) {
-                const facet_outcome<I> o = pm::decode<I>(rd);
-                sink.facet(o);
-                out.valid += o.record.valid;
-                out.boundary += o.record.boundary;
-                out.skipped += o.record.termination == facet_termination::skipped;
-                out.reused += o.record.reused_from.has_value();
-                out.facets.push_back(o.record);
-                boxes_total += o.record.valid + o.record.boundary;
-                if (options.max_boxes && boxes_total >= *options.max_boxes && out.facets.size() < selection.size())
-                    stopping = true, why = termination::box_budget;
-                if (options.progress) {
-                    const double s = std::chrono::duration<double>(clock::now() - start).count();
-                    const std::size_t done = out.facets.size();
-                    const part_progress p{done, selection.size(), out.valid, out.boundary, s, meter.seconds_left(done, s)};
-                    if (!options.progress(p)) stopping = true, why = termination::cancelled;
-                }
-            }
-            if (!complete) stopping = true, why = termination::cancelled;
+            for (std::uint64_t i = 0; i < n && !run.stop_requested(); ++i) schedule.emit(sink, pm::decode<I>(rd));
+            if (!complete) run.stop(termination::cancelled);
             finished.erase(it);
             ++next_emit;
         }
     };
 
-    while (next_emit < chunks && !stopping) {
-        if (options.stop.stop_requested()) stopping = true, why = termination::cancelled;
-        if (options.time_limit && clock::now() - start >= *options.time_limit) stopping = true, why = termination::deadline;
+    while (next_emit < chunks && !run.stop_requested()) {
+        if (run.past_deadline()) run.stop(termination::deadline);
         // Answer waiting workers and feed the local worker while the window allows.
         while (!waiting.empty() && may_hand_out()) {
             const std::int64_t c = static_cast<std::int64_t>(next_chunk++);
@@ -370,10 +345,7 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
             MPI_Recv(bytes.data(), size, MPI_BYTE, st.MPI_SOURCE, pm::result, comm, MPI_STATUS_IGNORE);
         }
     }
-    out.reason = out.facets.size() == selection.size() ? termination::completed : why;
-    out.threads = options.threads ? options.threads : static_cast<std::size_t>(oneapi::tbb::info::default_concurrency());
-    out.seconds = std::chrono::duration<double>(clock::now() - start).count();
-    return out;
+    return schedule.finish(part_threads(options));
 }
 
 }  // namespace certipose

@@ -44,6 +44,7 @@
 #include "certipose/pose/pose_box.hpp"
 #include "certipose/solver/detail/growth.hpp"
 #include "certipose/solver/paving.hpp"
+#include "certipose/solver/run_context.hpp"
 #include "certipose/solver/result.hpp"
 #include "certipose/solver/task.hpp"
 
@@ -83,18 +84,6 @@ concept OrientationScheduleFor = OrientationPolicy<O, I, C> && requires { requir
 
 namespace detail {
 
-/// The clock, budgets and cancellation of one run, shared by its stages.
-struct run_clock {
-    using clock = std::chrono::steady_clock;
-    clock::time_point start = clock::now();
-    std::optional<clock::time_point> deadline{};
-    std::stop_token stop{};
-
-    double seconds() const { return std::chrono::duration<double>(clock::now() - start).count(); }
-    /// Cancelled or past the deadline.
-    bool out_of_time() const { return stop.stop_requested() || (deadline && clock::now() >= *deadline); }
-};
-
 /// The hint type of an orientation policy (HintedOrientationPolicy), an empty one otherwise.
 template <class O, class I, class C>
 struct orientation_hint_of {
@@ -132,7 +121,7 @@ public:
     /// `carving_steps`: the run paves with carving, so the steps meant for its boxes run (as
     /// `tuning` says); `done`: boxes the run has processed so far (both stages count).
     orientation_stage(const Orientation& policy, const facet& f, const Camera& camera, const solve_options& options,
-                      const schedule_options& tuning, const detail::run_clock& clock, Bisector bisector,
+                      const schedule_options& tuning, const run_context& clock, Bisector bisector,
                       solve_result<I>& out, std::size_t done)
         : policy_(policy),
           facet_(f),
@@ -183,7 +172,7 @@ private:
     const facet& facet_;
     const Camera& camera_;
     const solve_options& options_;
-    const detail::run_clock& clock_;
+    const run_context& clock_;
     Bisector bisector_;
     solve_result<I>& out_;
     std::size_t done_;
@@ -315,7 +304,7 @@ void orientation_stage<Schedule, Orientation, Camera, I, Bisector>::orient_each(
         if (!stopped) {
             if (options_.stop.stop_requested()) {
                 st.reason = termination::cancelled, stopped = true;
-            } else if (clock_.deadline && detail::run_clock::clock::now() >= *clock_.deadline) {
+            } else if (clock_.past_deadline()) {
                 st.reason = termination::deadline, stopped = true;
             } else if (options_.progress && done_ % 64 == 0 &&
                        !options_.progress(solve_progress{"orientation", done_, todo_.size(), st.valid, st.boundary,

@@ -299,12 +299,12 @@ public:
 private:
     // The stages of `solve`, in order (see the header comment).
     position_stage_result<I> run_position_stage(std::size_t facet_index, const solve_options& options,
-                                                const detail::run_clock& clock, result_type& out) const;
-    void run_orientation_stage(const facet& f, const solve_options& options, const detail::run_clock& clock,
+                                                const run_context& clock, result_type& out) const;
+    void run_orientation_stage(const facet& f, const solve_options& options, const run_context& clock,
                                position_stage_result<I>& positions, result_type& out) const;
-    void run_growth(std::size_t facet_index, const solve_options& options, const detail::run_clock& clock,
+    void run_growth(std::size_t facet_index, const solve_options& options, const run_context& clock,
                     result_type& out) const;
-    void run_placement_stage(std::size_t facet_index, const solve_options& options, const detail::run_clock& clock,
+    void run_placement_stage(std::size_t facet_index, const solve_options& options, const run_context& clock,
                              result_type& out) const;
 
     const triangle_mesh* part_;
@@ -327,9 +327,7 @@ private:
 template <class Policies>
 auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& options) const -> result_type {
     options.validate();
-    detail::run_clock clock;
-    clock.stop = options.stop;
-    if (options.time_limit) clock.deadline = clock.start + *options.time_limit;
+    const run_context clock(options.stop, options.time_limit);
     const facet& f = part_->facet(facet_index);  // throws out_of_range("facet", ...)
     result_type out;
     out.facet_index = facet_index;
@@ -346,11 +344,11 @@ auto pose_solver<Policies>::solve(std::size_t facet_index, const solve_options& 
 
 template <class Policies>
 auto pose_solver<Policies>::run_position_stage(std::size_t facet_index, const solve_options& options,
-                                               const detail::run_clock& clock, result_type& out) const
+                                               const run_context& clock, result_type& out) const
     -> position_stage_result<I> {
     paver_options popt;
     popt.max_boxes = options.max_boxes;
-    popt.deadline = clock.deadline;
+    popt.deadline = clock.deadline();
     popt.record_tree = options.keep_tree;
     if (options.progress) {
         popt.progress_every = 256;
@@ -363,8 +361,8 @@ auto pose_solver<Policies>::run_position_stage(std::size_t facet_index, const so
     if (options.refine) {
         // The refinement's deadline is its own, not the run's: the orientation stage follows.
         position_refinement refine{options.refine->width(options.position_eps), std::nullopt};
-        if (options.refine->time_limit) refine.deadline = clock.start + *options.refine->time_limit;
-        else if (options.time_limit) refine.deadline = clock.start + *options.time_limit / 4;  // refinement::time_limit
+        if (options.refine->time_limit) refine.deadline = clock.start() + *options.refine->time_limit;
+        else if (options.time_limit) refine.deadline = clock.start() + *options.time_limit / 4;  // refinement::time_limit
         stage.refine(r, refine, popt, options.stop);
     }
     stage.explain(r);
@@ -390,7 +388,7 @@ auto pose_solver<Policies>::run_position_stage(std::size_t facet_index, const so
 
 template <class Policies>
 void pose_solver<Policies>::run_orientation_stage(const facet& f, const solve_options& options,
-                                                  const detail::run_clock& clock, position_stage_result<I>& positions,
+                                                  const run_context& clock, position_stage_result<I>& positions,
                                                   result_type& out) const {
     // At least one 6D box per position box (bisections add more).
     out.boxes.reserve(positions.boxes.boundary.size() + positions.boxes.pending.size() + positions.boxes.valid.size());
@@ -412,7 +410,7 @@ void pose_solver<Policies>::run_orientation_stage(const facet& f, const solve_op
 
 template <class Policies>
 void pose_solver<Policies>::run_growth(std::size_t facet_index, const solve_options& options,
-                                       const detail::run_clock& clock, result_type& out) const {
+                                       const run_context& clock, result_type& out) const {
     solve_stats& st = out.stats;
     auto ok = certifier(facet_index);
     std::vector<pose_box<I>> valid;
@@ -444,7 +442,7 @@ void pose_solver<Policies>::run_growth(std::size_t facet_index, const solve_opti
 
 template <class Policies>
 void pose_solver<Policies>::run_placement_stage(std::size_t facet_index, const solve_options& options,
-                                                const detail::run_clock& clock, result_type& out) const {
+                                                const run_context& clock, result_type& out) const {
     auto ok = certifier(facet_index);
     // The margin of the erode-and-restore step: the reach of the box's camera positions, at
     // least the facet's own (solver/placement_stage.hpp).
