@@ -5,11 +5,17 @@
 #include "dirty_scene.hpp"
 #include "solver_support.hpp"
 
+#include <certipose/io/box_store.hpp>
 #include <certipose/io/json.hpp>
+#include <certipose/io/run_journal.hpp>
 #include <certipose/part/part_solver.hpp>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <unistd.h>
 #include <variant>
 
 using namespace solver_test;
@@ -139,4 +145,80 @@ TEST_CASE("reuse between translates in a part run, sanitized: completed and stop
         }
         MESSAGE("reuse, sanitized: " << checked << " VALID boxes checked");
     }
+}
+
+TEST_CASE("a part run cut short and resumed through its journal, sanitized: the uninterrupted run's store") {
+    // What certipose-part --resume does (io/run_journal.hpp), under ASan: a run whose process dies
+    // after a checkpoint (the journal destroyed without commit), with a torn journal line and
+    // junk after the store's last checkpoint, continued from the journal on the rest of the
+    // selection, gives the uninterrupted run's boxes.cpbx byte for byte.
+    namespace fs = std::filesystem;
+    using I = boost_interval;
+    const thin_lens_camera camera(design_camera_parameters());
+    const part_solver<> whole(part().mesh, camera, {.min_view_angle = 0.35});
+    part_options o;
+    o.facet = {.position_eps = 0.4, .orientation_eps = 0.38};
+    o.facets = {0, 300, 600, 900, 1200, 1500, 1800, 2100};
+    o.threads = 2;
+    const nlohmann::json key = {{"settings", {{"position_eps", 0.4}}}};
+    const std::vector<std::string> stores{"boxes.cpbx"};
+    const fs::path dir = fs::temp_directory_path() / ("certipose-journal-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const auto solve_into = [&](part_run_journal& j, const part_options& opts) {
+        std::ostream& out = j.store("boxes.cpbx");
+        const auto at = static_cast<std::size_t>(out.tellp());
+        auto store = at == 0 ? box_store_sink<I>(out, true)
+                             : box_store_sink<I>::continuing(out, (at - box_store_layout::header_bytes) /
+                                                                      box_store_layout::record_bytes);
+        j.checkpoint();
+        journal_sink<box_store_sink<I>> sink{&store, &j};
+        const part_result r = whole.solve(opts, sink);
+        store.finish();
+        return r;
+    };
+
+    {  // uninterrupted
+        part_run_journal j = part_run_journal::start(dir / "full", key, stores);
+        REQUIRE(solve_into(j, o).reason == termination::completed);
+        j.commit("{}\n");
+    }
+    CHECK_FALSE(fs::exists(dir / "full" / part_run_journal::folder_name));
+    {  // dies after a checkpoint of 3 facets
+        part_run_journal j = part_run_journal::start(dir / "cut", key, stores);
+        part_options cut = o;
+        cut.progress = [&](const part_progress& p) {
+            if (p.facets_done < 3) return true;
+            j.checkpoint();
+            return false;
+        };
+        REQUIRE(solve_into(j, cut).reason == termination::cancelled);
+    }  // no commit: the folder stays, as after SIGKILL
+    const fs::path unfinished = dir / "cut" / part_run_journal::folder_name;
+    {
+        std::ofstream(unfinished / "journal", std::ios::app | std::ios::binary) << "0123abcd {\"facets\":[{\"ind";
+        std::ofstream(unfinished / "boxes.cpbx", std::ios::app | std::ios::binary) << std::string(777, '\x5a');
+    }
+    CHECK_THROWS_WITH_AS(
+        [&] {
+            std::optional<part_run_journal> other;
+            (void)part_run_journal::resume(dir / "cut", {{"settings", {{"position_eps", 0.2}}}}, stores, other);
+        }(),
+        doctest::Contains("settings.position_eps: 0.4 in the run, 0.2 here"), certipose::invalid_argument);
+    std::optional<part_run_journal> j;
+    REQUIRE(part_run_journal::resume(dir / "cut", key, stores, j) == part_run_journal::found::unfinished);
+    REQUIRE(j->done().facets.size() == 3);
+    CHECK(j->done().facets[2].index == 600);
+    part_options rest = o;
+    rest.facets.erase(rest.facets.begin(), rest.facets.begin() + 3);
+    REQUIRE(solve_into(*j, rest).reason == termination::completed);
+    j->commit("{}\n");
+    const auto bytes = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string full = bytes(dir / "full" / "boxes.cpbx");
+    CHECK(full.size() > box_store_layout::header_bytes + 100 * box_store_layout::record_bytes);
+    CHECK(bytes(dir / "cut" / "boxes.cpbx") == full);
+    CHECK_FALSE(fs::exists(unfinished));
+    fs::remove_all(dir);
 }
