@@ -335,9 +335,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
     describe_run_settings<std::decay_t<decltype(part)>>(s, args, opt.facet, part.solver().occlusion());
     s.scene = extra.record;
 
-    std::vector<std::size_t> selection = opt.facets;
-    if (selection.empty())
-        for (std::size_t f = 0; f < mesh.num_faces(); ++f) selection.push_back(f);
+    const std::vector<std::size_t> selection = certipose::selected_facets(opt, mesh.num_faces());
     // Rank 0 keeps the journal and tells the other ranks where the selection resumes (-1 after
     // an error there, which it reports; -2 when the run is already complete) and how many boxes
     // the facets before hold (the run's box budget: every rank must agree on what is left).
@@ -409,19 +407,11 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
         (void)solve(nothing);
         return signals.interrupted() ? signals.exit_code() : exit_ok;
     }
-    const bool resumed = !journal->done().facets.empty() || first > 0;
     std::optional<certipose::jsonl_sink<I>> jsonl;
     std::optional<certipose::box_store_sink<I>> binary;
     if (args.write_jsonl) jsonl.emplace(journal->store("boxes.jsonl"), certipose::checks_occlusion<Occlusion>);
-    if (args.write_binary) {
-        std::ostream& out = journal->store("boxes.cpbx");
-        const auto at = static_cast<std::size_t>(out.tellp());
-        if (at == 0)
-            binary.emplace(out, certipose::checks_occlusion<Occlusion>);
-        else  // a resumed store: its header and the records of the facets done are kept
-            binary.emplace(certipose::box_store_sink<I>::continuing(
-                out, (at - certipose::box_store_layout::header_bytes) / certipose::box_store_layout::record_bytes));
-    }
+    if (args.write_binary)  // a resumed store keeps its header and the records of the facets done
+        binary.emplace(certipose::box_store_sink<I>::append_to(journal->store("boxes.cpbx"), certipose::checks_occlusion<Occlusion>));
     journal->checkpoint();  // the stores' headers, durable before the first facet
     certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> stores{
         {jsonl ? &*jsonl : nullptr, binary ? &*binary : nullptr}};
@@ -461,7 +451,7 @@ int run(const arguments& args, const certipose::triangle_mesh& mesh, const certi
                     "boxes, %zu facets skipped\n",
                     args.mesh.string().c_str(), mesh.num_faces(), s.facets.size(), selection.size(), s.totals.seconds, proc.ranks,
                     threads, valid, boundary, skipped);
-        if (resumed)
+        if (first > 0)
             std::printf("  resumed: %zu facet(s) were finished by the run it continues\n", journal->done().facets.size());
         if (reason != certipose::termination::completed)
             std::printf("  stopped early: %s ended the run; the facets finished are written (--resume continues it)\n",

@@ -165,11 +165,7 @@ TEST_CASE("a part run cut short and resumed through its journal, sanitized: the 
     const fs::path dir = fs::temp_directory_path() / ("certipose-journal-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     const auto solve_into = [&](part_run_journal& j, const part_options& opts) {
-        std::ostream& out = j.store("boxes.cpbx");
-        const auto at = static_cast<std::size_t>(out.tellp());
-        auto store = at == 0 ? box_store_sink<I>(out, true)
-                             : box_store_sink<I>::continuing(out, (at - box_store_layout::header_bytes) /
-                                                                      box_store_layout::record_bytes);
+        auto store = box_store_sink<I>::append_to(j.store("boxes.cpbx"), true);
         j.checkpoint();
         journal_sink<box_store_sink<I>> sink{&store, &j};
         const part_result r = whole.solve(opts, sink);

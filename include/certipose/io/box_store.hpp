@@ -100,9 +100,14 @@ public:
         check();
     }
 
-    /// Continues a store whose header and first `records` records `out` already holds, from its
-    /// end (a resumed run, io/run_journal.hpp).
-    static box_store_sink continuing(std::ostream& out, std::size_t records) { return box_store_sink(out, records); }
+    /// A sink appending to `out` at its current position: a new store (the header first) when
+    /// that is 0, else the continuation of a store whose header and whole records `out` already
+    /// holds up to there (a resumed run, io/run_journal.hpp).
+    static box_store_sink append_to(std::ostream& out, bool occlusion_checked) {
+        const auto at = static_cast<std::size_t>(out.tellp());
+        if (at == 0) return box_store_sink(out, occlusion_checked);
+        return box_store_sink(out, (at - box_store_layout::header_bytes) / box_store_layout::record_bytes);
+    }
 
     void facet(const facet_outcome<I>& o) {
         if (o.record.index > 0xffffffffu)

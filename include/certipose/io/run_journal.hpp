@@ -130,7 +130,6 @@ public:
     struct progress {
         std::vector<facet_record> facets;  ///< finished and durable, in selection order
         double seconds = 0;                ///< their wall time, every invocation together
-        bool from_summary = false;         ///< continued from a committed run that was stopped early
     };
 
     /// How `resume` found `dir`.
@@ -233,7 +232,6 @@ public:
         detail::journal::sync_path(folder, folder.string(), true);
         j.done_.facets = s.facets;
         j.done_.seconds = s.totals.seconds;
-        j.done_.from_summary = true;
         j.pending_ = s.facets;
         j.append_line(bytes, s.totals.seconds);
         journal.emplace(std::move(j));

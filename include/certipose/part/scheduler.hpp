@@ -70,6 +70,19 @@ struct work_meter {
 
 }  // namespace detail
 
+/// The facets `options` selects in a part of `faces` facets, in order: `options.facets`, or all
+/// of them when it is empty. Throws out_of_range for a facet not in the part.
+inline std::vector<std::size_t> selected_facets(const part_options& options, std::size_t faces) {
+    std::vector<std::size_t> selection = options.facets;
+    if (selection.empty()) {
+        selection.resize(faces);
+        for (std::size_t i = 0; i < faces; ++i) selection[i] = i;
+    }
+    for (std::size_t f : selection)
+        if (f >= faces) throw out_of_range("facet", f, faces);
+    return selection;
+}
+
 /// The run-level state of a part run (see the header comment): what to do, in which order, and
 /// what has been handed to the sink. `emit` and `next` are called from one thread at a time.
 class part_schedule {
@@ -80,13 +93,7 @@ public:
     /// for a box budget of 0.
     template <class Estimate>
     part_schedule(const part_options& options, std::size_t faces, Estimate&& estimate)
-        : options_(&options), selection_(options.facets), context_(options.stop, options.time_limit) {
-        if (selection_.empty()) {
-            selection_.resize(faces);
-            for (std::size_t i = 0; i < faces; ++i) selection_[i] = i;
-        }
-        for (std::size_t f : selection_)
-            if (f >= faces) throw out_of_range("facet", f, faces);
+        : options_(&options), selection_(selected_facets(options, faces)), context_(options.stop, options.time_limit) {
         if (options.max_boxes && *options.max_boxes == 0)
             throw invalid_argument("max_boxes", "part_solver: the run's max_boxes must be at least 1");
         if (options.progress) meter_ = detail::work_meter(selection_, std::forward<Estimate>(estimate));
