@@ -10,7 +10,7 @@
 // scale the plan recorded, and the face count must match). The output is written atomically and
 // never over an input. Formats: docs/conventions.md#exports. Errors: one line
 // "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line).
-#include "program_support.hpp"
+#include "program_skeleton.hpp"
 
 #include <certipose/io/read_mesh.hpp>
 #include <certipose/io/json.hpp>
@@ -40,34 +40,54 @@ namespace {
 namespace fs = std::filesystem;
 using namespace certipose_program;
 
-struct arguments {
-    fs::path plan, mesh, out;
-    std::string format, parent_frame = "world", link = "optical", title;
-    std::optional<double> scale;
-    bool quiet = false;
-};
+/// certipose-export as the programs' skeleton sees it (program_skeleton.hpp).
+struct export_program {
+    static constexpr const char* name = "certipose-export";
+    static constexpr const char* description =
+        "certipose-export: a plan's cameras as CSV, ROS/MoveIt constraints, URDF, glTF (.glb) or a self-contained HTML "
+        "viewer (docs/conventions.md#exports).";
 
-std::optional<arguments> parse(int argc, char** argv, int& code) {
-    CLI::App app{"certipose-export: a plan's cameras as CSV, ROS/MoveIt constraints, URDF, glTF (.glb) or a "
-                 "self-contained HTML viewer (docs/conventions.md#exports).",
-                 "certipose-export"};
-    arguments a;
-    std::string plan, mesh, out, scale, link, title;
-    app.add_option("plan", plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
-    app.add_option("--format", a.format, "csv, moveit, urdf, glb or html")->type_name("FORMAT")->required();
-    app.add_option("--out", out, "the file to write")->type_name("FILE")->required();
-    app.add_option("--mesh", mesh, "the plan's part (needed by glb and html): OFF, OBJ, PLY or STL")
-        ->type_name("PART")->check(CLI::ExistingFile);
-    app.add_option("--scale", scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
-    app.add_option("--parent-frame", a.parent_frame, "urdf: the link the cameras are fixed to (default world); "
-                   "moveit: the planning frame of the part")->type_name("NAME");
-    app.add_option("--link", link, "moveit: constrain each camera's optical frame (default) or its mount "
-                   "(with the camera's mount_offset)")->type_name("optical|mount");
-    app.add_option("--title", title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
-    app.add_flag("--quiet,-q", a.quiet, "print nothing but errors");
-    if (!parse_command_line(app, argc, argv, "certipose-export", code)) return std::nullopt;
-    try {
-        a.plan = plan, a.mesh = mesh, a.out = out;
+    struct options {
+        std::string plan, format, out, mesh, scale, parent_frame, link, title;
+        bool quiet = false;
+    };
+
+    struct arguments {
+        fs::path plan, mesh, out;
+        std::string format, parent_frame = "world", link = "optical", title;
+        std::optional<double> scale;
+        bool quiet = false;
+
+        std::vector<certipose::named_path> files_read() const {
+            std::vector<certipose::named_path> in{{"PLAN.json", plan}};
+            if (!mesh.empty()) in.push_back({"--mesh", mesh});
+            return in;
+        }
+        std::vector<certipose::named_path> files_written() const { return {{"--out", out}}; }
+    };
+
+    static void declare(CLI::App& app, options& text) {
+        app.add_option("plan", text.plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
+        app.add_option("--format", text.format, "csv, moveit, urdf, glb or html")->type_name("FORMAT")->required();
+        app.add_option("--out", text.out, "the file to write")->type_name("FILE")->required();
+        app.add_option("--mesh", text.mesh, "the plan's part (needed by glb and html): OFF, OBJ, PLY or STL")
+            ->type_name("PART")
+            ->check(CLI::ExistingFile);
+        app.add_option("--scale", text.scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
+        app.add_option("--parent-frame", text.parent_frame,
+                       "urdf: the link the cameras are fixed to (default world); moveit: the planning frame of the part")
+            ->type_name("NAME");
+        app.add_option("--link", text.link,
+                       "moveit: constrain each camera's optical frame (default) or its mount (with the camera's "
+                       "mount_offset)")
+            ->type_name("optical|mount");
+        app.add_option("--title", text.title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
+        app.add_flag("--quiet,-q", text.quiet, "print nothing but errors");
+    }
+
+    static arguments check(const options& text) {
+        arguments a;
+        a.plan = text.plan, a.mesh = text.mesh, a.out = text.out, a.format = text.format, a.quiet = text.quiet;
         if (a.format != "csv" && a.format != "moveit" && a.format != "urdf" && a.format != "glb" && a.format != "html")
             throw usage_error("--format: expected csv, moveit, urdf, glb or html, got '" + a.format + "'");
         const bool picture = a.format == "glb" || a.format == "html";
@@ -75,27 +95,28 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
         const auto only_for = [&](const std::string& option, bool given, bool used, const char* formats) {
             if (given && !used) throw usage_error(option + " applies to " + formats + ", not --format " + a.format);
         };
-        only_for("--parent-frame", app.count("--parent-frame") > 0, a.format == "urdf" || a.format == "moveit",
+        only_for("--parent-frame", !text.parent_frame.empty(), a.format == "urdf" || a.format == "moveit",
                  "--format urdf and moveit");
-        only_for("--link", !link.empty(), a.format == "moveit", "--format moveit");
-        only_for("--title", !title.empty(), a.format == "html", "--format html");
-        only_for("--mesh", !mesh.empty(), picture, "--format glb and html");
-        only_for("--scale", !scale.empty(), picture, "--format glb and html");
-        if (!link.empty()) a.link = link;
-        if (!title.empty()) a.title = title;
+        only_for("--link", !text.link.empty(), a.format == "moveit", "--format moveit");
+        only_for("--title", !text.title.empty(), a.format == "html", "--format html");
+        only_for("--mesh", !text.mesh.empty(), picture, "--format glb and html");
+        only_for("--scale", !text.scale.empty(), picture, "--format glb and html");
+        if (!text.parent_frame.empty()) a.parent_frame = text.parent_frame;
+        if (!text.link.empty()) a.link = text.link;
+        if (!text.title.empty()) a.title = text.title;
         if (a.link != "optical" && a.link != "mount")
             throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
-        if (picture && a.mesh.empty())
-            throw usage_error("--format " + a.format + " draws the part: give --mesh PART");
-        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
+        if (picture && a.mesh.empty()) throw usage_error("--format " + a.format + " draws the part: give --mesh PART");
+        if (!text.scale.empty()) a.scale = parse_double("--scale", text.scale, "a positive finite factor");
         if (a.title.empty()) a.title = "certipose plan: " + a.plan.filename().string();
         check_output("--out", a.out);
         return a;
-    } catch (const usage_error& e) {
-        usage_failure("certipose-export", e.what(), code);
-        return std::nullopt;
     }
-}
+
+    static int run(const arguments& args, const interruption& signals);
+};
+
+using arguments = export_program::arguments;
 
 std::string content(const arguments& args, const certipose::plan_document& plan) {
     if (args.format == "csv") return certipose::plan_csv(plan);
@@ -124,10 +145,11 @@ std::string content(const arguments& args, const certipose::plan_document& plan)
     return certipose::plan_html(plan, glb, mesh.num_faces(), {certipose_viewer_template, certipose_viewer_script}, args.title);
 }
 
-int run(const arguments& args) {
+int export_program::run(const arguments& args, const interruption& signals) {
     const certipose::plan_document plan = certipose::read_plan(args.plan);
     certipose::output_files files;
     files.add(args.out, content(args, plan));
+    if (signals.interrupted()) return report_interrupted(name, signals);  // staged, never committed
     files.commit();
     if (!args.quiet)
         std::printf("wrote %s (%s, %zu cameras)\n", args.out.string().c_str(), args.format.c_str(), plan.cameras.size());
@@ -136,14 +158,4 @@ int run(const arguments& args) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    int code = exit_ok;
-    const auto args = parse(argc, argv, code);
-    if (!args) return code;
-    return report_errors("certipose-export", [&] {
-        std::vector<certipose::named_path> inputs{{"PLAN.json", args->plan}};
-        if (!args->mesh.empty()) inputs.push_back({"--mesh", args->mesh});
-        certipose::refuse_overwriting_inputs(inputs, {{"--out", args->out}});
-        return run(*args);
-    });
-}
+int main(int argc, char** argv) { return program_main<export_program>(argc, argv); }

@@ -23,7 +23,7 @@
 // the reason. PLAN.json and the PLY are committed together; SIGINT/SIGTERM stop the run, leave no
 // file and exit 130/143. Errors: one line "certipose-plan: ..." on stderr, exit 1 (bad input,
 // write error) or 2 (bad command line).
-#include "program_support.hpp"
+#include "program_skeleton.hpp"
 #include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
@@ -63,77 +63,108 @@ using namespace certipose_program;
 using I = certipose::boost_interval;
 using policies = certipose::with_camera<certipose::calibrated_camera>;
 
-struct arguments {
-    fs::path mesh, camera, part_results, out, ply;
-    double scale = 1.0;
-    std::optional<double> position_eps, orientation_eps, coverage, exact;
-    double lp_seconds = 60;
-    std::optional<std::size_t> cameras;
-    std::string facets;
-    std::size_t per_facet = 1, threads = 0;
-    std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
-    bool quiet = false;
-    bool all_candidates = false;  ///< --all-candidates: no thinning
-    bool lp_whole = false;        ///< --lp-whole: the LP bound leaves out no facet class
-    scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
-};
+/// The facet solver's flags of the one-shot mode: the thresholds, optional.
+constexpr solver_flags one_shot_flags{
+    .max_boxes = nullptr, .time_limit = nullptr, .thresholds_required = false, .paving = false, .thresholds_note = "one-shot mode: "};
 
-std::optional<arguments> parse(int argc, char** argv, int& code) {
-    CLI::App app{"certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (docs/coverage.md).",
-                 "certipose-plan"};
-    std::string mesh, camera, part_results, out, ply, scale, position_eps, orientation_eps, cameras, coverage, per_facet,
-        exact, lp_seconds, threads, facets, tolerance;
-    bool quiet = false, all_candidates = false, lp_whole = false;
-    app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
-    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
-    app.add_option("--scale", scale, "multiply mesh coordinates by S (as the run did)")->type_name("S");
-    app.add_option("--part-results", part_results, "a certipose-part output folder (summary.json, and boxes.cpbx or boxes.jsonl)")->type_name("DIR")->check(CLI::ExistingDirectory);
-    app.add_option("--position-eps", position_eps, "one-shot mode: run the whole part first at this threshold (metres)")->type_name("METRES");
-    app.add_option("--orientation-eps", orientation_eps, "one-shot mode: orientation threshold (radians)")->type_name("RADIANS");
-    app.add_option("--facets", facets, "one-shot mode: facets to solve, e.g. 0,5,17-30 (default: all)")->type_name("LIST");
-    app.add_option("--cameras", cameras, "at most K cameras (maximum coverage)")->type_name("K");
-    app.add_option("--coverage", coverage, "the fewest cameras certifying this share of the coverable area (default 0.95)")->type_name("F");
-    app.add_option("--candidates-per-facet", per_facet, "largest VALID boxes of each facet to consider (default 1)")->type_name("N");
-    app.add_option("--tolerance", tolerance,
-                   "candidate boxes: half-widths around each VALID box's centre, metres and radians, or 'none' "
-                   "for whole boxes (default 0.005,0.02)")
-        ->type_name("P,O");
-    app.add_flag("--all-candidates", all_candidates,
-                 "compute the certified facet set of every candidate (default: skip a candidate whose facet an already "
-                 "inspected one certifies, largest estimated view first; docs/coverage.md#thinning)");
-    app.add_option("--exact", exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
-    app.add_option("--lp-seconds", lp_seconds, "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")->type_name("SECONDS");
-    app.add_flag("--lp-whole", lp_whole,
-                 "solve the LP bound's whole program (default: on a large part, leave out its smallest facet classes, "
-                 "at most 1 % of the area, which keeps it a lower bound and solves it in seconds; docs/coverage.md)");
-    app.add_option("--threads", threads, "worker threads (default: every core)")->type_name("N");
-    app.add_option("--out", out, "the plan")->type_name("PLAN.json")->required();
-    app.add_option("--ply", ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
-    scene_options_text scene;
-    add_scene_options(app, scene);
-    app.add_flag("--quiet,-q", quiet, "print nothing but errors");
-    if (!parse_command_line(app, argc, argv, "certipose-plan", code)) return std::nullopt;
-    try {
+/// certipose-plan as the programs' skeleton sees it (program_skeleton.hpp).
+struct plan_program {
+    static constexpr const char* name = "certipose-plan";
+    static constexpr const char* description =
+        "certipose-plan: the fewest camera pose boxes that certify a part. Writes PLAN.json (docs/coverage.md).";
+
+    struct options {
+        input_options_text inputs;
+        solver_options_text solver;
+        std::string part_results, out, ply, cameras, coverage, per_facet, exact, lp_seconds, threads, facets, tolerance;
+        bool quiet = false, all_candidates = false, lp_whole = false;
+    };
+
+    struct arguments {
+        input_arguments inputs;  ///< --mesh, --camera, --scale and the scene options
+        fs::path part_results, out, ply;
+        /// The one-shot mode's thresholds (--position-eps, --orientation-eps); unset with --part-results.
+        std::optional<certipose::solve_settings> one_shot;
+        std::optional<double> coverage, exact;
+        double lp_seconds = 60;
+        std::optional<std::size_t> cameras;
+        std::string facets;
+        std::size_t per_facet = 1, threads = 0;
+        std::optional<std::array<double, 2>> tolerance = std::array<double, 2>{0.005, 0.02};
+        bool quiet = false;
+        bool all_candidates = false;  ///< --all-candidates: no thinning
+        bool lp_whole = false;        ///< --lp-whole: the LP bound leaves out no facet class
+
+        std::vector<certipose::named_path> files_read() const {
+            std::vector<certipose::named_path> in = inputs.paths();
+            if (!part_results.empty())
+                for (const char* f : {"summary.json", "boxes.jsonl", "boxes.cpbx"}) in.push_back({"--part-results", part_results / f});
+            return in;
+        }
+        std::vector<certipose::named_path> files_written() const {
+            std::vector<certipose::named_path> out_files{{"--out", out}};
+            if (!ply.empty()) out_files.push_back({"--ply", ply});
+            return out_files;
+        }
+    };
+
+    static void declare(CLI::App& app, options& text) {
+        add_input_options(app, text.inputs, "multiply mesh coordinates by S (as the run did)");
+        app.add_option("--part-results", text.part_results, "a certipose-part output folder (summary.json, and boxes.cpbx or boxes.jsonl)")
+            ->type_name("DIR")
+            ->check(CLI::ExistingDirectory);
+        add_solver_options(app, text.solver, one_shot_flags);
+        app.add_option("--facets", text.facets, "one-shot mode: facets to solve, e.g. 0,5,17-30 (default: all)")->type_name("LIST");
+        app.add_option("--cameras", text.cameras, "at most K cameras (maximum coverage)")->type_name("K");
+        app.add_option("--coverage", text.coverage, "the fewest cameras certifying this share of the coverable area (default 0.95)")
+            ->type_name("F");
+        app.add_option("--candidates-per-facet", text.per_facet, "largest VALID boxes of each facet to consider (default 1)")
+            ->type_name("N");
+        app.add_option("--tolerance", text.tolerance,
+                       "candidate boxes: half-widths around each VALID box's centre, metres and radians, or 'none' "
+                       "for whole boxes (default 0.005,0.02)")
+            ->type_name("P,O");
+        app.add_flag("--all-candidates", text.all_candidates,
+                     "compute the certified facet set of every candidate (default: skip a candidate whose facet an already "
+                     "inspected one certifies, largest estimated view first; docs/coverage.md#thinning)");
+        app.add_option("--exact", text.exact, "try GLPK's exact answer for up to SECONDS")->type_name("SECONDS");
+        app.add_option("--lp-seconds", text.lp_seconds,
+                       "give GLPK's LP lower bound up to SECONDS (default 60; a bound not proven by then is not claimed)")
+            ->type_name("SECONDS");
+        app.add_flag("--lp-whole", text.lp_whole,
+                     "solve the LP bound's whole program (default: on a large part, leave out its smallest facet classes, "
+                     "at most 1 % of the area, which keeps it a lower bound and solves it in seconds; docs/coverage.md)");
+        app.add_option("--threads", text.threads, "worker threads (default: every core)")->type_name("N");
+        app.add_option("--out", text.out, "the plan")->type_name("PLAN.json")->required();
+        app.add_option("--ply", text.ply, "the part coloured by camera, and the camera boxes")->type_name("PLAN.ply");
+        app.add_flag("--quiet,-q", text.quiet, "print nothing but errors");
+    }
+
+    static arguments check(const options& text) {
         arguments a;
-        a.mesh = mesh, a.camera = camera, a.part_results = part_results, a.out = out, a.ply = ply, a.quiet = quiet;
-        a.facets = facets;
-        a.all_candidates = all_candidates;
-        a.lp_whole = lp_whole;
-        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
-        if (!position_eps.empty()) a.position_eps = parse_double("--position-eps", position_eps, "a positive finite number of metres");
-        if (!orientation_eps.empty())
-            a.orientation_eps = parse_double("--orientation-eps", orientation_eps, "a positive finite number of radians");
-        if (part_results.empty() == !(a.position_eps && a.orientation_eps))
+        a.inputs = parse_input_options(text.inputs);
+        a.part_results = text.part_results, a.out = text.out, a.ply = text.ply, a.quiet = text.quiet;
+        a.facets = text.facets;
+        a.all_candidates = text.all_candidates;
+        a.lp_whole = text.lp_whole;
+        const bool thresholds = !text.solver.position_eps.empty() && !text.solver.orientation_eps.empty();
+        const bool any_threshold = !text.solver.position_eps.empty() || !text.solver.orientation_eps.empty();
+        const certipose::solve_settings solve = parse_solver_options(text.solver, one_shot_flags);
+        if (text.part_results.empty() == !thresholds)
             throw usage_error("give either --part-results DIR or both --position-eps and --orientation-eps (one-shot mode)");
-        if (!part_results.empty() && (a.position_eps || a.orientation_eps || !facets.empty()))
+        if (!text.part_results.empty() && (any_threshold || !text.facets.empty()))
             throw usage_error("--position-eps, --orientation-eps and --facets belong to the one-shot mode, not --part-results");
+        if (thresholds) a.one_shot = solve;
+        const std::string& cameras = text.cameras;
+        const std::string& coverage = text.coverage;
+        const std::string& tolerance = text.tolerance;
         if (!cameras.empty() && !coverage.empty()) throw usage_error("give --cameras or --coverage, not both");
         if (!cameras.empty()) a.cameras = parse_count("--cameras", cameras, 1);
         if (!coverage.empty()) {
             a.coverage = parse_double("--coverage", coverage, "a share in (0, 1]");
             if (*a.coverage > 1.0) throw usage_error("--coverage: expected a share in (0, 1], got '" + coverage + "'");
         }
-        if (!per_facet.empty()) a.per_facet = parse_count("--candidates-per-facet", per_facet, 1);
+        if (!text.per_facet.empty()) a.per_facet = parse_count("--candidates-per-facet", text.per_facet, 1);
         if (tolerance == "none") a.tolerance.reset();
         else if (!tolerance.empty()) {
             const auto comma = tolerance.find(',');
@@ -143,42 +174,39 @@ std::optional<arguments> parse(int argc, char** argv, int& code) {
                 parse_double("--tolerance", tolerance.substr(0, comma), "a positive finite number of metres"),
                 parse_double("--tolerance", tolerance.substr(comma + 1), "a positive finite number of radians")};
         }
-        if (!exact.empty()) a.exact = parse_double("--exact", exact, "a positive finite number of seconds");
-        if (!lp_seconds.empty()) a.lp_seconds = parse_double("--lp-seconds", lp_seconds, "a positive finite number of seconds");
-        if (!threads.empty()) a.threads = parse_count("--threads", threads, 1);
-        a.scene = parse_scene_options(scene, a.camera);
+        if (!text.exact.empty()) a.exact = parse_double("--exact", text.exact, "a positive finite number of seconds");
+        if (!text.lp_seconds.empty())
+            a.lp_seconds = parse_double("--lp-seconds", text.lp_seconds, "a positive finite number of seconds");
+        if (!text.threads.empty()) a.threads = parse_count("--threads", text.threads, 1);
         check_output("--out", a.out);
         if (!a.ply.empty()) check_output("--ply", a.ply);
         return a;
-    } catch (const usage_error& e) {
-        usage_failure("certipose-plan", e.what(), code);
-        return std::nullopt;
     }
-}
+
+    static int run(const arguments& args, const interruption& signals);
+};
+
+using arguments = plan_program::arguments;
 
 double since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 
-int run(const arguments& args, const interruption& signals) {
+int plan_program::run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-plan", args.quiet);
-    stage.show("reading " + args.mesh.string());
-    const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
-    certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
-    certipose_program::apply_placement(input.task, args.scene, mesh);
-    const scene extra = read_scene(args.scene, &stage);
-    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces");
-    const auto part = naming_occluders(args.scene, [&] {
-        return certipose::part_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders, .semantics = args.scene.semantics});
-    });
+    const program_inputs in = read_inputs(args.inputs, stage);
+    const certipose::triangle_mesh& mesh = in.mesh;
+    const certipose::camera_task& input = in.camera;
+    const scene& extra = in.extra;
+    const auto part = build_solver<certipose::part_solver<policies>>(args.inputs, in, stage);
     stage.done();
     warn_about_scene("certipose-plan", part.solver().occlusion(), args.quiet);
     const auto& solver = part.solver();
     const bool progress = show_progress(args.quiet);
 
     certipose::plan_document doc;
-    doc.mesh = {args.mesh.string(), mesh.num_faces(), args.scale, certipose::mesh_digest(mesh)};
+    doc.mesh = {args.inputs.mesh.string(), mesh.num_faces(), args.inputs.scale, certipose::mesh_digest(mesh)};
     certipose::part_summary here;
     here.mesh = doc.mesh;
     certipose::describe_camera(here, solver.camera(), input.task);
@@ -202,15 +230,14 @@ int run(const arguments& args, const interruption& signals) {
         certipose::check_part_run(run, here, (args.part_results / "summary.json").string());
         trust_run = !run.mesh.digest.empty();
         records = run.facets;
-        certipose::add_run_candidates(pool, args.part_results, run, mesh.num_faces(), args.scene.regions);
+        certipose::add_run_candidates(pool, args.part_results, run, mesh.num_faces(), args.inputs.scene.regions);
         stage.done();
     } else {
         certipose::part_options opt;
-        opt.facet.position_eps = *args.position_eps;
-        opt.facet.orientation_eps = *args.orientation_eps;
+        opt.facet = certipose::to_solve_options(*args.one_shot);
         opt.threads = args.threads;
         opt.stop = signals.token();
-        opt.regions = args.scene.regions;  // each facet's VALID boxes, before they become candidates
+        opt.regions = args.inputs.scene.regions;  // each facet's VALID boxes, before they become candidates
         if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, mesh.num_faces());
         if (progress)
             opt.progress = [](const certipose::part_progress& p) {
@@ -263,7 +290,7 @@ int run(const arguments& args, const interruption& signals) {
         const auto pct = [](double a, double b) { return b > 0 ? 100.0 * a / b : 0.0; };
         std::printf("%s (%zu faces): %zu camera box(es) certify %.1f %% of the coverable area (%.1f %% of the part); "
                     "at least %zu needed (%s bound)\n",
-                    args.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
+                    args.inputs.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
                     pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
         std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu inspected %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
@@ -275,22 +302,4 @@ int run(const arguments& args, const interruption& signals) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    int code = exit_ok;
-    const auto args = parse(argc, argv, code);
-    if (!args) return code;
-    return report_errors("certipose-plan", [&] {
-        std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}};
-        add_occluder_inputs(inputs, args->scene);
-        if (!args->part_results.empty()) {
-            inputs.push_back({"--part-results", args->part_results / "summary.json"});
-            inputs.push_back({"--part-results", args->part_results / "boxes.jsonl"});
-            inputs.push_back({"--part-results", args->part_results / "boxes.cpbx"});
-        }
-        std::vector<certipose::named_path> outputs{{"--out", args->out}};
-        if (!args->ply.empty()) outputs.push_back({"--ply", args->ply});
-        certipose::refuse_overwriting_inputs(inputs, outputs);
-        const interruption signals;
-        return run(*args, signals);
-    });
-}
+int main(int argc, char** argv) { return program_main<plan_program>(argc, argv); }

@@ -53,55 +53,31 @@ std::function<bool(const certipose::solve_progress&)> progress_printer(bool quie
     };
 }
 
+/// Solves the facet with the pipeline of occlusion policy `Occlusion` (with aabb exactly the
+/// pipeline certipose::precompiled instantiates), after the warnings about the scene.
 template <class Occlusion>
-certipose::solve_result<I> solve_with(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
-                                      const certipose::inspection_task& task, std::size_t facet,
-                                      const certipose::solve_options& options, const certipose_program::scene& scene,
-                                      const certipose_program::scene_arguments& scene_args, bool quiet) {
-    // With aabb: exactly the pipeline certipose::precompiled instantiates.
-    using calibrated = certipose::with_camera<certipose::calibrated_camera>;
-    using solver = certipose::pose_solver<std::conditional_t<std::is_same_v<Occlusion, certipose::aabb_occlusion>, calibrated,
-                                                             certipose::with_occlusion<Occlusion, calibrated>>>;
-    const auto built = [&] { return solver(mesh, camera, task, {.occluders = scene.occluders, .semantics = scene_args.semantics}); };
-    const auto s = certipose_program::naming_occluders(scene_args, built);
-    certipose_program::warn_about_scene("certipose-solve", s.occlusion(), quiet);
-    if constexpr (std::is_same_v<Occlusion, certipose::aabb_occlusion>)
-        if (const auto* survey = s.occlusion().survey(); survey && !quiet && facet < survey->hidden.size() &&
-                                                         certipose::material_in_front(survey->hidden[facet]))
-            if (const auto why = survey->why_hidden(facet))
-                std::cerr << "certipose-solve: warning: facet " << facet << " is " << *why
-                          << ": no camera can inspect it\n";
-    return s.solve(facet, options);
-}
-
-certipose::solve_result<I> solve(const certipose::triangle_mesh& mesh, const certipose::calibrated_camera& camera,
-                                 const certipose::inspection_task& task, const certipose_solve::arguments& args,
-                                 certipose::solve_options options, const certipose_program::scene& scene) {
-    options.progress = progress_printer(args.quiet);
+certipose::solve_result<I> solve_with(const certipose_solve::arguments& args, const certipose_program::program_inputs& in,
+                                      const certipose::solve_options& options) {
     // Building the solver builds the occlusion scene (checks the part is a closed solid, or
     // surveys a triangle soup): seconds for a large mesh, so say so on a terminal.
-    certipose_program::stage_line stage("certipose-solve", args.quiet || args.occlusion == certipose_solve::occlusion_mode::none);
-    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces, then solving");
-    certipose::solve_result<I> r;
-    switch (args.occlusion) {
-        case certipose_solve::occlusion_mode::aabb:
-            r = solve_with<certipose::aabb_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
-            break;
-        case certipose_solve::occlusion_mode::boolean:
-            r = solve_with<certipose::boolean_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
-            break;
-        case certipose_solve::occlusion_mode::none:
-            r = solve_with<certipose::no_occlusion>(mesh, camera, task, args.facet, options, scene, args.scene, args.quiet);
-            break;
-    }
-    if (options.progress) std::fputc('\n', stderr);
-    return r;
+    certipose_program::stage_line stage("certipose-solve", args.quiet || !certipose::checks_occlusion<Occlusion>);
+    const auto s =
+        certipose_program::build_solver<certipose::pose_solver<certipose::calibrated_pipeline<Occlusion>>>(args.inputs, in, stage);
+    stage.done();
+    certipose_program::warn_about_scene("certipose-solve", s.occlusion(), args.quiet);
+    if constexpr (std::is_same_v<Occlusion, certipose::aabb_occlusion>)
+        if (const auto* survey = s.occlusion().survey(); survey && !args.quiet && args.facet < survey->hidden.size() &&
+                                                         certipose::material_in_front(survey->hidden[args.facet]))
+            if (const auto why = survey->why_hidden(args.facet))
+                std::cerr << "certipose-solve: warning: facet " << args.facet << " is " << *why
+                          << ": no camera can inspect it\n";
+    return s.solve(args.facet, options);
 }
 
 /// What to try when most BOUNDARY boxes are undecided for `why`.
 std::string advice(certipose::boundary_reason why, const certipose_solve::arguments& args) {
     using certipose::boundary_reason;
-    const std::string smaller_eps = "try a smaller --position-eps (e.g. " + certipose::detail::format_double(args.position_eps / 2) + ")";
+    const std::string smaller_eps = "try a smaller --position-eps (e.g. " + certipose::detail::format_double(args.solve.position_eps / 2) + ")";
     switch (why) {
         case boundary_reason::facet_contact:
         case boundary_reason::backface: return "boxes reaching the facet's plane stay undecided; " + smaller_eps;
@@ -135,122 +111,90 @@ void warn_if_tiny(const certipose_solve::arguments& args, const certipose::calib
                   const certipose::triangle_mesh& mesh, const certipose::solve_options& options) {
     const certipose::distance_range range = camera.distance_range();
     const double area = 4.0 * std::numbers::pi * (range.min * range.min + range.max * range.max);
-    const double boxes = area / (args.position_eps * args.position_eps);
+    const double boxes = area / (args.solve.position_eps * args.solve.position_eps);
     if (std::isfinite(boxes) && boxes > 10.0 * static_cast<double>(options.max_boxes))
         std::fprintf(stderr,
                      "certipose-solve: warning: --position-eps %s is small for this camera (in focus from %.3g to %.3g m, "
                      "part %.3g m across): about %.1e boundary boxes, over the %zu-box budget; the run will end on "
                      "the budget (raise --position-eps or --max-boxes, or set --time-limit)\n",
-                     certipose::detail::format_double(args.position_eps).c_str(), range.min, range.max,
+                     certipose::detail::format_double(args.solve.position_eps).c_str(), range.min, range.max,
                      mesh.bbox().diagonal().norm(), boxes, options.max_boxes);
-}
-
-/// One line per error, whatever the message holds.
-int report(const std::string& message) {
-    std::cerr << "certipose-solve: " << certipose_solve::detail::one_line(message) << "\n";
-    return certipose_solve::exit_failure;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    const certipose_solve::parse_outcome parsed =
-        certipose_solve::parse_arguments(argc, argv, std::cout, std::cerr);
-    if (!parsed.args) return parsed.exit_code;
-    const certipose_solve::arguments& args = *parsed.args;
-    const interruption signals;  // SIGINT/SIGTERM: stop the solve, write nothing, exit 130/143
+int certipose_solve::program::run(const arguments& args, const interruption& signals) {
+    certipose_program::stage_line stage("certipose-solve", args.quiet);
+    const certipose_program::program_inputs in = certipose_program::read_inputs(args.inputs, stage);
+    const certipose::triangle_mesh& mesh = in.mesh;
+    const certipose::camera_task& input = in.camera;
+    (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
+    certipose::solve_options options = certipose::to_solve_options(args.solve);
+    if (!args.quiet) warn_if_tiny(args, input.calibrated(), mesh, options);
 
-    try {
-        certipose_program::stage_line stage("certipose-solve", args.quiet);
-        stage.show("reading " + args.mesh.string());
-        const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
-        const certipose_program::scene scene = certipose_program::read_scene(args.scene, &stage);
-        stage.done();
-        (void)mesh.facet(args.facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
-        certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
-        certipose_program::apply_placement(input.task, args.scene, mesh);
+    options.stop = signals.token();
+    options.progress = progress_printer(args.quiet);
+    auto result = certipose::visit_occlusion(
+        args.occlusion, [&]<class O>(std::type_identity<O>) { return solve_with<O>(args, in, options); });
+    if (options.progress) std::fputc('\n', stderr);
+    // Camera regions: the VALID boxes restricted to where a camera may stand, before writing.
+    certipose::restrict_to_regions(result, args.inputs.scene.regions, options.position_eps);
+    const auto interrupted = [&] { return certipose_program::report_interrupted("certipose-solve", signals); };
+    if (signals.interrupted()) return interrupted();
 
-        certipose::solve_options options;
-        options.position_eps = args.position_eps;
-        options.orientation_eps = args.orientation_eps;
-        if (args.max_boxes) options.max_boxes = *args.max_boxes;
-        if (args.time_limit_seconds)
-            options.time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                std::chrono::duration<double>(*args.time_limit_seconds));
-        options.paving = certipose_program::paving_for(args.paper_paving, args.corner_depth, args.corner_rest);
-        if (args.refine_seconds)
-            options.refine = certipose::refinement{
-                .time_limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                    std::chrono::duration<double>(*args.refine_seconds))};
-        if (args.grow) options.grow = certipose::growth_options{};
-        options.validate();
+    certipose::result_document document = certipose::make_result_document(result, mesh, input, options);
+    document.scene = in.extra.record;  // "occluders", "keep_in", "keep_out"
+    nlohmann::ordered_json json = certipose::result_to_json(document);
+    json["settings"]["occlusion"] = std::string(certipose::to_string(args.occlusion));  // extra field
+    // Both files or neither: each is staged complete before either is renamed into place,
+    // and a signal that arrives while they are staged discards them (output_files.hpp).
+    certipose::output_files files;
+    files.add(args.out, certipose::json_text(json));
+    if (args.ply) files.add(*args.ply, certipose::ply_text(mesh, document.facet.index, document.boxes));
+    if (signals.interrupted()) return interrupted();
+    files.commit();
 
-        const certipose::calibrated_camera camera = input.calibrated();
-        if (!args.quiet) warn_if_tiny(args, camera, mesh, options);
-
-        options.stop = signals.token();
-        auto result = solve(mesh, camera, input.task, args, options, scene);
-        // Camera regions: the VALID boxes restricted to where a camera may stand, before writing.
-        certipose::restrict_to_regions(result, args.scene.regions, options.position_eps);
-        const auto interrupted = [&] { return certipose_program::report_interrupted("certipose-solve", signals); };
-        if (signals.interrupted()) return interrupted();
-
-        certipose::result_document document = certipose::make_result_document(result, mesh, input, options);
-        document.scene = scene.record;  // "occluders", "keep_in", "keep_out"
-        nlohmann::ordered_json json = certipose::result_to_json(document);
-        json["settings"]["occlusion"] = certipose_solve::to_string(args.occlusion);  // extra field
-        // Both files or neither: each is staged complete before either is renamed into place,
-        // and a signal that arrives while they are staged discards them (output_files.hpp).
-        certipose::output_files files;
-        files.add(args.out, certipose::json_text(json));
-        if (args.ply) files.add(*args.ply, certipose::ply_text(mesh, document.facet.index, document.boxes));
-        if (signals.interrupted()) return interrupted();
-        files.commit();
-
-        if (!args.quiet) {
-            const auto& st = document.stats;
-            std::printf("facet %zu of %s (%zu faces): %zu valid, %zu boundary boxes in %.3f s\n", args.facet,
-                        args.mesh.string().c_str(), mesh.num_faces(), st.valid, st.boundary, st.seconds);
-            std::printf("  position stage    %8.3f s  (%zu valid / %zu boundary position boxes, %zu occlusion tests, "
-                        "%zu shadow walks)\n",
-                        st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests, st.shadow_walks);
-            std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
-                        st.orientation_certifications);
-            if (st.inner_pieces + st.occlusion_pieces > 0)
-                std::printf("  carved off          %zu pieces by inner contraction, %zu VALID pieces by occlusion cuts\n",
-                            st.inner_pieces, st.occlusion_pieces);
-            if (st.refinement_stopped)
-                std::printf("  refinement          stopped by its time budget (boxes not refined yet are boundary)\n");
-            if (args.grow)
-                std::printf("  growth            %8.3f s  (%zu merges, %zu boxes widened)\n", st.seconds_growth, st.merges,
-                            st.grown);
-            std::printf("  certified volume    %.4g m^3 of positions (boundary %.4g m^3)\n", st.valid_volume,
-                        st.boundary_volume);
-            if (st.boundary > 0)
-                std::printf("  boundary boxes undecided on: %s\n", certipose::boundary_summary(st).c_str());
-            if (st.reason != certipose::termination::completed)
-                std::printf("  stopped early: %s ended the run (unfinished boxes are reported as boundary)\n",
-                            certipose::to_string(st.reason));
-            if (!st.occlusion_checked)
-                std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint "
-                            "but occlusion\n");
-            if (const std::string extra = certipose_program::scene_text(args.scene); !extra.empty())
-                std::printf("  scene               %s; camera regions dropped %zu VALID pieces, left %zu undecided "
-                            "(boundary camera_region)\n",
-                            extra.c_str(), st.region_dropped, result.boundary_because(certipose::boundary_reason::camera_region));
-            std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply ? " and " : "",
-                        args.ply ? args.ply->string().c_str() : "");
-            if (st.valid == 0) {
-                const auto why = certipose::main_boundary_reason(st);
-                std::fprintf(stderr, "certipose-solve: hint: no VALID box for facet %zu (boundary boxes undecided on: %s); %s\n",
-                             args.facet, certipose::boundary_summary(st).c_str(),
-                             why ? advice(*why, args).c_str() : "the facet cannot be inspected with this camera and task");
-            }
+    if (!args.quiet) {
+        const auto& st = document.stats;
+        std::printf("facet %zu of %s (%zu faces): %zu valid, %zu boundary boxes in %.3f s\n", args.facet,
+                    args.inputs.mesh.string().c_str(), mesh.num_faces(), st.valid, st.boundary, st.seconds);
+        std::printf("  position stage    %8.3f s  (%zu valid / %zu boundary position boxes, %zu occlusion tests, "
+                    "%zu shadow walks)\n",
+                    st.seconds_position, st.position_valid, st.position_boundary, st.occlusion_tests, st.shadow_walks);
+        std::printf("  orientation stage %8.3f s  (%zu interval certifications)\n", st.seconds_orientation,
+                    st.orientation_certifications);
+        if (st.inner_pieces + st.occlusion_pieces > 0)
+            std::printf("  carved off          %zu pieces by inner contraction, %zu VALID pieces by occlusion cuts\n",
+                        st.inner_pieces, st.occlusion_pieces);
+        if (st.refinement_stopped)
+            std::printf("  refinement          stopped by its time budget (boxes not refined yet are boundary)\n");
+        if (args.solve.grow)
+            std::printf("  growth            %8.3f s  (%zu merges, %zu boxes widened)\n", st.seconds_growth, st.merges,
+                        st.grown);
+        std::printf("  certified volume    %.4g m^3 of positions (boundary %.4g m^3)\n", st.valid_volume,
+                    st.boundary_volume);
+        if (st.boundary > 0)
+            std::printf("  boundary boxes undecided on: %s\n", certipose::boundary_summary(st).c_str());
+        if (st.reason != certipose::termination::completed)
+            std::printf("  stopped early: %s ended the run (unfinished boxes are reported as boundary)\n",
+                        certipose::to_string(st.reason));
+        if (!st.occlusion_checked)
+            std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint "
+                        "but occlusion\n");
+        if (const std::string extra = certipose_program::scene_text(args.inputs.scene); !extra.empty())
+            std::printf("  scene               %s; camera regions dropped %zu VALID pieces, left %zu undecided "
+                        "(boundary camera_region)\n",
+                        extra.c_str(), st.region_dropped, result.boundary_because(certipose::boundary_reason::camera_region));
+        std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply ? " and " : "",
+                    args.ply ? args.ply->string().c_str() : "");
+        if (st.valid == 0) {
+            const auto why = certipose::main_boundary_reason(st);
+            std::fprintf(stderr, "certipose-solve: hint: no VALID box for facet %zu (boundary boxes undecided on: %s); %s\n",
+                         args.facet, certipose::boundary_summary(st).c_str(),
+                         why ? advice(*why, args).c_str() : "the facet cannot be inspected with this camera and task");
         }
-        return certipose_solve::exit_ok;
-    } catch (const certipose::error& e) {
-        return report(e.what());
-    } catch (const std::exception& e) {  // bad_alloc, filesystem errors, ...
-        return report(std::string("unexpected error: ") + e.what());
     }
+    return certipose_solve::exit_ok;
 }
+
+int main(int argc, char** argv) { return certipose_program::program_main<certipose_solve::program>(argc, argv); }

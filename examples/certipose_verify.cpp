@@ -19,7 +19,7 @@
 // PLAN.json (io/plan_files.hpp; a quaternion or matrix becomes a ±1e-8 rad box around its ZXZ angles). One line per pose on stdout; REPORT.json (written
 // atomically) holds the sets. Errors: one line "certipose-verify: ..." on stderr, exit 1 (bad
 // input, write error) or 2 (bad command line); SIGINT/SIGTERM exit 130/143 and write nothing.
-#include "program_support.hpp"
+#include "program_skeleton.hpp"
 #include "program_scene.hpp"
 
 #include <certipose/cgal.hpp>
@@ -48,54 +48,68 @@ using namespace certipose_program;
 using I = certipose::boost_interval;
 using policies = certipose::with_camera<certipose::calibrated_camera>;
 
-struct arguments {
-    fs::path mesh, camera, poses, out;
-    double scale = 1.0;
-    bool tolerance = true, quiet = false;
-    scene_arguments scene;  ///< --occluder, --keep-in, --keep-out
+/// certipose-verify as the programs' skeleton sees it (program_skeleton.hpp).
+struct verify_program {
+    static constexpr const char* name = "certipose-verify";
+    static constexpr const char* description =
+        "certipose-verify: the facets each given camera pose (or pose box) certifiably inspects.";
+
+    struct options {
+        input_options_text inputs;
+        std::string poses, out;
+        bool no_tolerance = false, quiet = false;
+    };
+
+    struct arguments {
+        input_arguments inputs;  ///< --mesh, --camera, --scale and the scene options
+        fs::path poses, out;
+        bool tolerance = true, quiet = false;
+
+        std::vector<certipose::named_path> files_read() const {
+            std::vector<certipose::named_path> in = inputs.paths();
+            in.push_back({"--poses", poses});
+            return in;
+        }
+        std::vector<certipose::named_path> files_written() const {
+            if (out.empty()) return {};
+            return {{"--out", out}};
+        }
+    };
+
+    static void declare(CLI::App& app, options& text) {
+        add_input_options(app, text.inputs, "multiply mesh coordinates by S");
+        app.add_option("--poses", text.poses, "exact poses or 6D boxes, or a PLAN.json (docs/coverage.md)")
+            ->type_name("POSES.json")
+            ->required()
+            ->check(CLI::ExistingFile);
+        app.add_option("--out", text.out, "the report: each pose's certified and possible facets")->type_name("REPORT.json");
+        app.add_flag("--no-tolerance", text.no_tolerance, "skip the largest tolerance box around exact poses");
+        app.add_flag("--quiet,-q", text.quiet, "print nothing but errors");
+    }
+
+    static arguments check(const options& text) {
+        arguments a;
+        a.inputs = parse_input_options(text.inputs);
+        a.poses = text.poses, a.out = text.out;
+        a.tolerance = !text.no_tolerance;
+        a.quiet = text.quiet;
+        if (!a.out.empty()) check_output("--out", a.out);
+        return a;
+    }
+
+    static int run(const arguments& args, const interruption& signals);
 };
 
-std::optional<arguments> parse(int argc, char** argv, int& code) {
-    CLI::App app{"certipose-verify: the facets each given camera pose (or pose box) certifiably inspects.", "certipose-verify"};
-    std::string mesh, camera, poses, out, scale;
-    bool no_tolerance = false, quiet = false;
-    app.add_option("--mesh", mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")->type_name("PART")->required()->check(CLI::ExistingFile);
-    app.add_option("--camera", camera, "camera/task JSON, or an OpenCV/ROS calibration file with --working-distance and --min-view-angle (docs/io.md)")->type_name("CAMERA")->required()->check(CLI::ExistingFile);
-    app.add_option("--poses", poses, "exact poses or 6D boxes, or a PLAN.json (docs/coverage.md)")->type_name("POSES.json")->required()->check(CLI::ExistingFile);
-    app.add_option("--scale", scale, "multiply mesh coordinates by S")->type_name("S");
-    app.add_option("--out", out, "the report: each pose's certified and possible facets")->type_name("REPORT.json");
-    app.add_flag("--no-tolerance", no_tolerance, "skip the largest tolerance box around exact poses");
-    scene_options_text scene;
-    add_scene_options(app, scene);
-    app.add_flag("--quiet,-q", quiet, "print nothing but errors");
-    if (!parse_command_line(app, argc, argv, "certipose-verify", code)) return std::nullopt;
-    try {
-        arguments a;
-        a.mesh = mesh, a.camera = camera, a.poses = poses, a.out = out;
-        a.tolerance = !no_tolerance;
-        a.quiet = quiet;
-        if (!scale.empty()) a.scale = parse_double("--scale", scale, "a positive finite factor");
-        if (!a.out.empty()) check_output("--out", a.out);
-        a.scene = parse_scene_options(scene, a.camera);
-        return a;
-    } catch (const usage_error& e) {
-        usage_failure("certipose-verify", e.what(), code);
-        return std::nullopt;
-    }
-}
+using arguments = verify_program::arguments;
 
-int run(const arguments& args, const interruption& signals) {
+int verify_program::run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-verify", args.quiet);
-    stage.show("reading " + args.mesh.string());
-    const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
-    certipose::camera_task input = certipose_program::read_camera(args.camera, args.scene);
-    certipose_program::apply_placement(input.task, args.scene, mesh);
+    const program_inputs in = read_inputs(args.inputs, stage);
+    const certipose::triangle_mesh& mesh = in.mesh;
+    const certipose::camera_task& input = in.camera;
+    stage.show("reading " + args.poses.string());
     const std::vector<certipose::pose_input> poses = certipose::read_poses(args.poses);
-    const scene extra = read_scene(args.scene, &stage);
-    stage.show("building the occlusion scene of the " + std::to_string(mesh.num_faces()) + " faces");
-    const auto solver = naming_occluders(args.scene, [&] {
-        return certipose::pose_solver<policies>(mesh, input.calibrated(), input.task, {.occluders = extra.occluders, .semantics = args.scene.semantics});
-    });
+    const auto solver = build_solver<certipose::pose_solver<policies>>(args.inputs, in, stage);
     certipose::facet_inspector<policies> inspector(solver);
     stage.done();
     warn_about_scene("certipose-verify", solver.occlusion(), args.quiet);
@@ -105,8 +119,8 @@ int run(const arguments& args, const interruption& signals) {
     nlohmann::ordered_json report;
     report["format"] = "certipose-verify-report";
     report["version"] = certipose::detail::json_io::format_version;
-    report["mesh"] = {{"path", args.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.scale}};
-    certipose::detail::json_io::put_scene(report, extra.record);  // "occluders", "keep_in", "keep_out"
+    report["mesh"] = {{"path", args.inputs.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.inputs.scale}};
+    certipose::detail::json_io::put_scene(report, in.extra.record);  // "occluders", "keep_in", "keep_out"
     // The placement tolerance every facet of "facets" is certified for (absent: nominal).
     if (input.task.placement) {
         nlohmann::ordered_json task;
@@ -119,7 +133,7 @@ int run(const arguments& args, const interruption& signals) {
     for (std::size_t i = 0; i < poses.size(); ++i) {
         if (signals.interrupted()) return report_interrupted("certipose-verify", signals);
         const certipose::pose_input& p = poses[i];
-        const certipose::pose_verification v = certipose::verify_pose(inspector, p, args.scene.regions, args.tolerance);
+        const certipose::pose_verification v = certipose::verify_pose(inspector, p, args.inputs.scene.regions, args.tolerance);
         const certipose::region_verdict where = v.where;
         const certipose::facet_coverage& c = v.coverage;
         for (std::size_t f : c.certified)
@@ -174,17 +188,4 @@ int run(const arguments& args, const interruption& signals) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    int code = exit_ok;
-    const auto args = parse(argc, argv, code);
-    if (!args) return code;
-    return report_errors("certipose-verify", [&] {
-        std::vector<certipose::named_path> outputs;
-        if (!args->out.empty()) outputs.push_back({"--out", args->out});
-        std::vector<certipose::named_path> inputs{{"--mesh", args->mesh}, {"--camera", args->camera}, {"--poses", args->poses}};
-        add_occluder_inputs(inputs, args->scene);
-        certipose::refuse_overwriting_inputs(inputs, outputs);
-        const interruption signals;
-        return run(*args, signals);
-    });
-}
+int main(int argc, char** argv) { return program_main<verify_program>(argc, argv); }

@@ -1,12 +1,13 @@
-// examples/program_scene.hpp — the scene options of the certipose programs, the part that needs
-// the mesh reader (not a library header; the command-line side is in program_support.hpp):
-// reading the --occluder meshes as --mesh is read (same reader, same errors), their records for
-// the outputs (io/scene_record.hpp), and naming an occluder's file in the occlusion policy's
-// errors (the policies check that every scene mesh is a closed solid and call the extra meshes
-// "occluder 0", "occluder 1", ... in the order given).
+// examples/program_scene.hpp — the inputs of the certipose programs, the part that needs the mesh
+// reader (not a library header; the command-line side is in program_skeleton.hpp): `read_inputs`
+// reads the mesh, the --occluder meshes (same reader, same errors), the camera and the placement
+// tolerance, always in that order; the scene's records for the outputs (io/scene_record.hpp);
+// and naming an occluder's file in the occlusion policy's errors (the policies check that every
+// scene mesh is a closed solid and call the extra meshes "occluder 0", "occluder 1", ... in the
+// order given).
 #pragma once
 
-#include "program_support.hpp"
+#include "program_skeleton.hpp"
 
 #include <certipose/cgal.hpp>
 #include <certipose/io/json.hpp>
@@ -68,9 +69,25 @@ inline void apply_placement(certipose::inspection_task& task, const scene_argume
     if (task.placement && !task.placement->datum) task.placement->datum = certipose::surface_centroid(mesh);
 }
 
-/// The --occluder files as inputs no output may overwrite.
-inline void add_occluder_inputs(std::vector<certipose::named_path>& inputs, const scene_arguments& args) {
-    for (const auto& o : args.occluders) inputs.push_back({"--occluder", o.path});
+/// What a program reads before it solves.
+struct program_inputs {
+    certipose::triangle_mesh mesh;  ///< --mesh × --scale
+    certipose::camera_task camera;  ///< --camera, its task with the run's placement tolerance
+    scene extra;                    ///< the --occluder meshes and the scene's record
+};
+
+/// Reads the inputs in one order (the mesh, the occluders, the camera), then resolves the
+/// placement tolerance against the mesh; io_error / mesh_error / invalid_argument name the file.
+/// `stage` says what is being read on a terminal.
+inline program_inputs read_inputs(const input_arguments& args, stage_line& stage) {
+    stage.show("reading " + args.mesh.string());
+    certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+    scene extra = read_scene(args.scene, &stage);
+    stage.show("reading " + args.camera.string());
+    certipose::camera_task camera = read_camera(args.camera, args.scene);
+    apply_placement(camera.task, args.scene, mesh);
+    stage.done();
+    return {std::move(mesh), std::move(camera), std::move(extra)};
 }
 
 /// Returns `build()` (a solver being built); a mesh_error of the occlusion policy about
@@ -93,6 +110,19 @@ decltype(auto) naming_occluders(const scene_arguments& args, Build&& build) {
         }
         throw;
     }
+}
+
+/// `Solver` (a pose_solver or a part_solver of the programs' pipeline,
+/// certipose::calibrated_pipeline) for the inputs: says on a terminal that the occlusion scene is
+/// being built (seconds for a large mesh), and names an occluder's file in the policy's errors.
+/// The caller clears `stage` once it has the solver.
+template <class Solver>
+Solver build_solver(const input_arguments& args, const program_inputs& in, stage_line& stage) {
+    stage.show("building the occlusion scene of the " + std::to_string(in.mesh.num_faces()) + " faces");
+    return naming_occluders(args.scene, [&] {
+        return Solver(in.mesh, in.camera.calibrated(), in.camera.task,
+                      {.occluders = in.extra.occluders, .semantics = args.scene.semantics});
+    });
 }
 
 /// What a triangle-soup survey found, in one line: "6 bodies (6 closed), 2272 intersecting

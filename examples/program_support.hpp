@@ -166,32 +166,6 @@ inline std::size_t parse_count(const std::string& option, const std::string& tex
     return v;
 }
 
-/// The paving choice of --paper-paving, --corner-depth and --corner-rest. Carving's steps that
-/// need a capability are left to the pipeline's policies (paving.hpp): with --occlusion boolean,
-/// whose test names no shadows, carving runs without occlusion cuts.
-inline certipose::paving_choice paving_for(bool paper, std::optional<std::size_t> corner_depth,
-                                           std::optional<double> corner_rest) {
-    if (paper) return certipose::paper_paving{};
-    certipose::carving c;
-    if (corner_depth) c.corner_depth = *corner_depth;
-    if (corner_rest) c.rest_min_pieces = *corner_rest;
-    return c;
-}
-
-/// --corner-depth: carving::corner_depth, 1 to 8.
-inline std::size_t parse_corner_depth(const std::string& text) {
-    const std::size_t v = parse_count("--corner-depth", text, 1);
-    if (v > 8) throw usage_error("--corner-depth: expected an integer from 1 to 8, got " + text);
-    return v;
-}
-
-/// --corner-rest: carving::rest_min_pieces, a finite number >= 0.
-inline double parse_corner_rest(const std::string& text) {
-    const double v = parse_number("--corner-rest", text, "a number >= 0");
-    if (!(v >= 0.0) || !std::isfinite(v)) throw usage_error("--corner-rest: expected a finite number >= 0, got " + text);
-    return v;
-}
-
 /// One --occluder: the mesh file and the factor its coordinates are multiplied by.
 struct occluder_arg {
     std::filesystem::path path;
@@ -399,41 +373,6 @@ inline std::string one_line(std::string s) {
 inline int report_interrupted(const char* program, const interruption& signals) {
     std::cerr << program << ": interrupted by " << interruption::name(signals.signal()) << "; nothing written\n";
     return signals.exit_code();
-}
-
-/// Runs `body` (returning an exit code); an error it throws becomes one line "<program>: ..." on
-/// stderr and exit code 1.
-template <class Body>
-int report_errors(const char* program, Body&& body) {
-    try {
-        return body();
-    } catch (const std::exception& e) {
-        const bool ours = dynamic_cast<const certipose::error*>(&e) != nullptr;
-        std::cerr << program << ": " << (ours ? "" : "unexpected error: ") << one_line(e.what()) << "\n";
-        return exit_failure;
-    }
-}
-
-/// A bad command line: one line "<program>: error: <message> (run with --help for usage)" on
-/// stderr (when `print`; MPI ranks other than 0 stay silent) and exit code 2.
-inline void usage_failure(const char* program, const std::string& message, int& code, bool print = true) {
-    if (print) std::cerr << program << ": error: " << one_line(message) << " (run with --help for usage)\n";
-    code = exit_usage;
-}
-
-/// `app.parse` with the programs' conventions: --help prints the usage (exit 0), a parse error is
-/// one line (exit 2). False: the program ends now with `code`.
-inline bool parse_command_line(CLI::App& app, int argc, char** argv, const char* program, int& code, bool print = true) {
-    try {
-        app.parse(argc, argv);
-        return true;
-    } catch (const CLI::CallForHelp&) {
-        if (print) std::cout << app.help();
-        code = exit_ok;
-    } catch (const CLI::ParseError& e) {
-        usage_failure(program, e.what(), code, print);
-    }
-    return false;
 }
 
 /// True when progress should be drawn: stderr is a terminal and the user did not ask for quiet.

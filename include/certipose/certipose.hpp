@@ -57,6 +57,7 @@
 #include "certipose/solver/pose_solver.hpp"  // IWYU pragma: export
 #include "certipose/solver/position_stage.hpp"  // IWYU pragma: export
 #include "certipose/solver/result.hpp"  // IWYU pragma: export
+#include "certipose/solver/solve_settings.hpp"  // IWYU pragma: export
 #include "certipose/solver/task.hpp"  // IWYU pragma: export
 
 #include "certipose/io/output_files.hpp"  // IWYU pragma: export

@@ -2,7 +2,8 @@
 //
 // <certipose/certipose.hpp> plus what needs CGAL: the certified occlusion policies
 // (`aabb_occlusion`, the default, and the paper's `boolean_occlusion`), `read_mesh` for OFF, OBJ,
-// PLY and STL, and the `cgal_interval` backend. So `certipose::pose_solver<>` works after this
+// PLY and STL, the `cgal_interval` backend, and `visit_occlusion`, the run-time choice among the
+// occlusion policies (solver/occlusion_choice.hpp). So `certipose::pose_solver<>` works after this
 // one include. Also the independent sampling check (verify/point_check.hpp), which decides close
 // calls with GMP and MPFR, as CGAL does.
 //
@@ -22,6 +23,7 @@
 #include "certipose/occlusion/cgal_aabb_occlusion.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_boolean_occlusion.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_mesh_survey.hpp"  // IWYU pragma: export
+#include "certipose/solver/occlusion_choice.hpp"  // IWYU pragma: export
 #include "certipose/verify/point_check.hpp"  // IWYU pragma: export
 
 #include "certipose/detail/precompiled.hpp"  // IWYU pragma: export

@@ -34,6 +34,8 @@
 #include <certipose/io/verify_poses.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
+#include <certipose/solver/occlusion_choice.hpp>
+#include <certipose/solver/solve_settings.hpp>
 
 #include <atomic>
 #include <chrono>
@@ -66,22 +68,14 @@ extern const std::string_view certipose_viewer_script;
 namespace {
 
 using I = cp::boost_interval;
-using calibrated = cp::with_camera<cp::calibrated_camera>;
-/// The part solver of one occlusion policy, with aabb exactly the precompiled default pipeline.
+/// The part solver of one occlusion policy: the programs' pipeline (cp::calibrated_pipeline).
 template <class Occlusion>
-using part_for = cp::part_solver<
-    std::conditional_t<std::is_same_v<Occlusion, cp::aabb_occlusion>, calibrated, cp::with_occlusion<Occlusion, calibrated>>>;
+using part_for = cp::part_solver<cp::calibrated_pipeline<Occlusion>>;
 using any_part = std::variant<std::unique_ptr<part_for<cp::aabb_occlusion>>, std::unique_ptr<part_for<cp::boolean_occlusion>>,
                               std::unique_ptr<part_for<cp::no_occlusion>>>;
 
 constexpr auto poll = std::chrono::milliseconds(50);
 
-std::chrono::steady_clock::duration seconds(double s, const char* field) {
-    if (!(s > 0.0) || !std::isfinite(s))
-        throw cp::invalid_argument(field, std::string(field) + " must be a positive finite number of seconds, got " +
-                                              cp::detail::format_double(s));
-    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
-}
 
 // ---- errors -------------------------------------------------------------------------------
 // The library's error types become the Python classes of certipose/_errors.py (subclasses of
@@ -216,37 +210,9 @@ camera_spec camera_from_file(const std::string& path, std::optional<std::pair<do
 
 // ---- options ------------------------------------------------------------------------------
 
-/// The per-facet options of the programs' command lines (certipose-solve, certipose-part).
-struct facet_settings {
-    double position_eps = 0.1, orientation_eps = 0.38;
-    std::optional<std::size_t> max_boxes;
-    std::optional<double> time_limit, refine, corner_rest;
-    std::optional<std::size_t> corner_depth;
-    bool paper_paving = false, grow = false;
-};
-
-cp::solve_options solve_options_of(const facet_settings& s) {
-    cp::solve_options o;
-    o.position_eps = s.position_eps;
-    o.orientation_eps = s.orientation_eps;
-    if (s.max_boxes) o.max_boxes = *s.max_boxes;
-    if (s.time_limit) o.time_limit = seconds(*s.time_limit, "time_limit");
-    if (s.paper_paving) {
-        if (s.corner_depth || s.corner_rest)
-            throw cp::invalid_argument(s.corner_depth ? "corner_depth" : "corner_rest",
-                                       "corner_depth and corner_rest tune the default paving; paper_paving has no corner boxes");
-        o.paving = cp::paper_paving{};
-    } else {
-        cp::carving c;
-        if (s.corner_depth) c.corner_depth = *s.corner_depth;
-        if (s.corner_rest) c.rest_min_pieces = *s.corner_rest;
-        o.paving = c;
-    }
-    if (s.refine) o.refine = cp::refinement{.time_limit = seconds(*s.refine, "refine")};
-    if (s.grow) o.grow = cp::growth_options{};
-    o.validate();
-    return o;
-}
+/// The per-facet options, as the programs' flags give them (solver/solve_settings.hpp; the
+/// Python keywords are its field names).
+using facet_settings = cp::solve_settings;
 
 // ---- results as arrays --------------------------------------------------------------------
 
@@ -385,11 +351,8 @@ public:
                     *mesh_, cam, task, typename part_for<O>::setup{.occluders = extra, .semantics = sem}));
             });
         };
-        if (occlusion == "aabb") part_ = build.template operator()<cp::aabb_occlusion>();
-        else if (occlusion == "boolean") part_ = build.template operator()<cp::boolean_occlusion>();
-        else if (occlusion == "none") part_ = build.template operator()<cp::no_occlusion>();
-        else
-            throw cp::invalid_argument("occlusion", "occlusion must be \"aabb\", \"boolean\" or \"none\", got \"" + occlusion + "\"");
+        part_ = cp::visit_occlusion(cp::parse_occlusion_choice(occlusion),
+                                    [&]<class O>(std::type_identity<O>) { return build.template operator()<O>(); });
     }
 
     /// The occluders and camera regions, as the documents record them.
@@ -406,7 +369,7 @@ public:
 
     facet_result solve_facet(std::size_t facet, const facet_settings& s) const {
         (void)mesh_->facet(facet);  // out_of_range: "facet 9999 is out of range (valid: 0..N)"
-        cp::solve_options o = solve_options_of(s);
+        cp::solve_options o = cp::to_solve_options(s);
         auto result = run_released([&](std::stop_token stop) {
             o.stop = stop;
             auto r = visit([&](const auto& part) { return part.solver().solve(facet, o); });
@@ -643,14 +606,14 @@ std::unique_ptr<part_run> start_part(std::shared_ptr<solver> s, const facet_sett
                                      std::optional<std::size_t> max_boxes_total, std::optional<double> time_limit_total,
                                      bool reuse, py::object progress, bool collect) {
     cp::part_options opt;
-    opt.facet = solve_options_of(fs);
+    opt.facet = cp::to_solve_options(fs);
     if (facets) opt.facets = cp::parse_facet_selection(*facets, s->mesh().num_faces());
     opt.threads = threads;
     opt.keep_boundary = boundary;
     opt.keep_largest = keep_largest;
     opt.max_boxes = max_boxes_total;
     opt.reuse.translates = reuse;
-    if (time_limit_total) opt.time_limit = seconds(*time_limit_total, "time_limit");
+    if (time_limit_total) opt.time_limit = cp::seconds_setting(*time_limit_total, "time_limit");
     opt.regions = s->scene().regions;  // each facet's VALID boxes, before the sink sees them (as certipose-part)
     return std::make_unique<part_run>(std::move(s), std::move(opt), std::move(progress), collect);
 }

@@ -1048,18 +1048,18 @@ TEST_CASE("certipose-solve: a full command line parses into the arguments") {
                       "--quiet"});
     REQUIRE_MESSAGE(r.outcome.args, r.err);
     const auto& a = *r.outcome.args;
-    CHECK(a.mesh == mesh);
+    CHECK(a.inputs.mesh == mesh);
     CHECK(a.facet == 17);
-    CHECK(a.camera == cam);
-    CHECK(a.position_eps == 0.1);
-    CHECK(a.orientation_eps == 0.38);
+    CHECK(a.inputs.camera == cam);
+    CHECK(a.solve.position_eps == 0.1);
+    CHECK(a.solve.orientation_eps == 0.38);
     CHECK(a.out == out);
     CHECK(a.ply == fs::path(ply));
-    CHECK(a.occlusion == certipose_solve::occlusion_mode::boolean);
-    CHECK(a.scale == 0.001);
-    CHECK(a.max_boxes == 5000u);
-    CHECK(a.time_limit_seconds == 2.5);
-    CHECK(a.corner_rest == 2.0);
+    CHECK(a.occlusion == certipose::occlusion_choice::boolean);
+    CHECK(a.inputs.scale == 0.001);
+    CHECK(a.solve.max_boxes == 5000u);
+    CHECK(a.solve.time_limit == 2.5);
+    CHECK(a.solve.corner_rest == 2.0);
     CHECK(a.quiet);
     CHECK(r.err.empty());
 
@@ -1067,10 +1067,10 @@ TEST_CASE("certipose-solve: a full command line parses into the arguments") {
     r = run_cli({"--mesh", mesh, "--facet", "0", "--camera", cam, "--position-eps", "0.1",
                  "--orientation-eps", "0.38", "--out", out});
     REQUIRE(r.outcome.args);
-    CHECK(r.outcome.args->occlusion == certipose_solve::occlusion_mode::aabb);
-    CHECK(r.outcome.args->scale == 1.0);
+    CHECK(r.outcome.args->occlusion == certipose::occlusion_choice::aabb);
+    CHECK(r.outcome.args->inputs.scale == 1.0);
     CHECK_FALSE(r.outcome.args->ply);
-    CHECK_FALSE(r.outcome.args->max_boxes);
+    CHECK_FALSE(r.outcome.args->solve.max_boxes);
     CHECK_FALSE(r.outcome.args->quiet);
 
     r = run_cli({"--help"});
@@ -1137,6 +1137,10 @@ TEST_CASE("certipose-solve: every command-line mistake is one error line and exi
         {with("--out", (dir.path / "." / "cam.json").string()), "is the input --camera"},
         {with("--ply", mesh), "--ply " + mesh + " is the input --mesh"},
         {with("--frobnicate", "1"), "--frobnicate"},
+        // A tuning of carving that --paper-paving would ignore is named, not dropped.
+        {[&] { auto a = with("--corner-depth", "3"); a.push_back("--paper-paving"); return a; }(),
+         "--corner-depth tunes the default paving; --paper-paving has no corner boxes"},
+        {with("--corner-depth", "9"), "--corner-depth: expected an integer from 1 to 8, got 9"},
     };
     for (const auto& c : cases) {
         std::string line;
