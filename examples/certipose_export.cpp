@@ -9,7 +9,8 @@
 // glb and html draw the part, so they need --mesh (the plan's part; --scale defaults to the
 // scale the plan recorded, and the face count must match). The output is written atomically and
 // never over an input. Formats: docs/conventions.md#exports. Errors: one line
-// "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line).
+// "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line);
+// SIGINT/SIGTERM exit 130/143 and write nothing.
 #include "program_skeleton.hpp"
 
 #include <certipose/io/read_mesh.hpp>
@@ -48,7 +49,8 @@ struct export_program {
         "viewer (docs/conventions.md#exports).";
 
     struct options {
-        std::string plan, format, out, mesh, scale, parent_frame, link, title;
+        std::string plan, format, out, mesh, scale;
+        std::optional<std::string> parent_frame, link, title;  ///< unset: not given (given empty is a mistake too)
         bool quiet = false;
     };
 
@@ -95,15 +97,15 @@ struct export_program {
         const auto only_for = [&](const std::string& option, bool given, bool used, const char* formats) {
             if (given && !used) throw usage_error(option + " applies to " + formats + ", not --format " + a.format);
         };
-        only_for("--parent-frame", !text.parent_frame.empty(), a.format == "urdf" || a.format == "moveit",
+        only_for("--parent-frame", text.parent_frame.has_value(), a.format == "urdf" || a.format == "moveit",
                  "--format urdf and moveit");
-        only_for("--link", !text.link.empty(), a.format == "moveit", "--format moveit");
-        only_for("--title", !text.title.empty(), a.format == "html", "--format html");
+        only_for("--link", text.link.has_value(), a.format == "moveit", "--format moveit");
+        only_for("--title", text.title.has_value(), a.format == "html", "--format html");
         only_for("--mesh", !text.mesh.empty(), picture, "--format glb and html");
         only_for("--scale", !text.scale.empty(), picture, "--format glb and html");
-        if (!text.parent_frame.empty()) a.parent_frame = text.parent_frame;
-        if (!text.link.empty()) a.link = text.link;
-        if (!text.title.empty()) a.title = text.title;
+        if (text.parent_frame) a.parent_frame = *text.parent_frame;
+        if (text.link) a.link = *text.link;
+        if (text.title) a.title = *text.title;
         if (a.link != "optical" && a.link != "mount")
             throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
         if (picture && a.mesh.empty()) throw usage_error("--format " + a.format + " draws the part: give --mesh PART");

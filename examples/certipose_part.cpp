@@ -53,6 +53,7 @@
 
 #include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -497,6 +498,9 @@ int part_program::run(const arguments& args, const interruption& signals) {
         std::cerr << "certipose-part: rank " << this_process.rank << " of " << this_process.ranks << ": " << one_line(e.what())
                   << "; ending the MPI job" << std::endl;
 #if defined(CERTIPOSE_PART_MPI)
+        // The launcher ends the job with signals: let them act, not be recorded as stop requests.
+        std::signal(SIGINT, SIG_DFL);
+        std::signal(SIGTERM, SIG_DFL);
         if (this_process.ranks > 1) MPI_Abort(MPI_COMM_WORLD, exit_failure);
 #endif
         return exit_failure;

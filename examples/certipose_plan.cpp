@@ -65,7 +65,7 @@ using policies = certipose::with_camera<certipose::calibrated_camera>;
 
 /// The facet solver's flags of the one-shot mode: the thresholds, optional.
 constexpr solver_flags one_shot_flags{
-    .max_boxes = nullptr, .time_limit = nullptr, .thresholds_required = false, .paving = false, .thresholds_note = "one-shot mode: "};
+    .max_boxes = nullptr, .time_limit = nullptr, .thresholds_required = false, .paving = false, .thresholds_note = "one-shot mode (the whole part is solved first at this threshold): "};
 
 /// certipose-plan as the programs' skeleton sees it (program_skeleton.hpp).
 struct plan_program {

@@ -1,5 +1,6 @@
 // examples/program_scene.hpp — the inputs of the certipose programs, the part that needs the mesh
-// reader (not a library header; the command-line side is in program_skeleton.hpp): `read_inputs`
+// reader (not a library header; their flags are declared and checked in program_skeleton.hpp and
+// program_support.hpp): `read_inputs`
 // reads the mesh, the --occluder meshes (same reader, same errors), the camera and the placement
 // tolerance, always in that order; the scene's records for the outputs (io/scene_record.hpp);
 // and naming an occluder's file in the occlusion policy's errors (the policies check that every

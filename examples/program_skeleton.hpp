@@ -265,9 +265,9 @@ parse_outcome<typename Program::arguments> parse_program(int argc, const char* c
 /// (an MPI rank other than 0, whose rank 0 says the same).
 template <class Program>
 int program_main(int argc, char** argv, bool print = true) {
-    const auto parsed = parse_program<Program>(argc, argv, std::cout, std::cerr, print);
-    if (!parsed.args) return parsed.exit_code;
-    try {
+    try {  // parsing too: comparing an output with the inputs reads the file system
+        const auto parsed = parse_program<Program>(argc, argv, std::cout, std::cerr, print);
+        if (!parsed.args) return parsed.exit_code;
         const interruption signals;
         return Program::run(*parsed.args, signals);
     } catch (const std::exception& e) {

@@ -1,7 +1,7 @@
 // examples/program_support.hpp — what every certipose program does the same way (not a library
-// header): exit codes, strict number parsing and the one error line, interruption by
-// SIGINT/SIGTERM through the library's cancellation, and a progress line on stderr when it is a
-// terminal.
+// header): exit codes, strict number parsing, the scene options, interruption by SIGINT/SIGTERM
+// through the library's cancellation, and a progress line on stderr when it is a terminal. The
+// skeleton that puts these together (one error line, the shared flags) is program_skeleton.hpp.
 //
 // `interruption` installs handlers for SIGINT and SIGTERM that only record the signal (the one
 // thing a handler may safely do); a watcher thread turns it into `std::stop_source::request_stop`,
