@@ -382,12 +382,11 @@ struct run_stores {
     std::optional<certipose::jsonl_sink<I>> jsonl;
     std::optional<certipose::box_store_sink<I>> binary;
 
-    template <class Occlusion>
-    static void open(run_stores& st, const arguments& args, certipose::part_run_journal& journal) {
-        constexpr bool checked = certipose::checks_occlusion<Occlusion>;
-        if (args.write_jsonl) st.jsonl.emplace(journal.store("boxes.jsonl"), checked);
+    /// Opens the stores --box-store asks for; `checked`: the run's occlusion policy checks occlusion.
+    void open(const arguments& args, certipose::part_run_journal& journal, bool checked) {
+        if (args.write_jsonl) jsonl.emplace(journal.store("boxes.jsonl"), checked);
         if (args.write_binary)  // a resumed store keeps its header and the records of the facets done
-            st.binary.emplace(certipose::box_store_sink<I>::append_to(journal.store("boxes.cpbx"), checked));
+            binary.emplace(certipose::box_store_sink<I>::append_to(journal.store("boxes.cpbx"), checked));
         journal.checkpoint();  // the stores' headers, durable before the first facet
     }
 };
@@ -463,7 +462,7 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
         return signals.interrupted() ? signals.exit_code() : exit_ok;
     }
     run_stores stores;
-    run_stores::open<Occlusion>(stores, args, *journal);
+    stores.open(args, *journal, certipose::checks_occlusion<Occlusion>);
     certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> both{
         {stores.jsonl ? &*stores.jsonl : nullptr, stores.binary ? &*stores.binary : nullptr}};
     certipose::journal_sink<decltype(both)> sink{&both, &*journal};

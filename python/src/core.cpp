@@ -76,7 +76,6 @@ using any_part = std::variant<std::unique_ptr<part_for<cp::aabb_occlusion>>, std
 
 constexpr auto poll = std::chrono::milliseconds(50);
 
-
 // ---- errors -------------------------------------------------------------------------------
 // The library's error types become the Python classes of certipose/_errors.py (subclasses of
 // ValueError, IndexError and OSError), carrying the field, index or path the C++ error names.

@@ -50,10 +50,7 @@ inline solve_options to_solve_options(const solve_settings& s) {
     solve_options o;
     o.position_eps = s.position_eps;
     o.orientation_eps = s.orientation_eps;
-    if (s.max_boxes) {
-        if (*s.max_boxes == 0) throw invalid_argument("max_boxes", "max_boxes must be at least 1");
-        o.max_boxes = *s.max_boxes;
-    }
+    if (s.max_boxes) o.max_boxes = *s.max_boxes;  // 0: solve_options::validate names it
     if (s.time_limit) o.time_limit = seconds_setting(*s.time_limit, "time_limit");
     if (s.paper_paving) {
         // A tuning of carving that would be ignored is a mistake worth naming.
