@@ -109,6 +109,12 @@ struct export_program {
         if (a.link != "optical" && a.link != "mount")
             throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
         if (picture && a.mesh.empty()) throw usage_error("--format " + a.format + " draws the part: give --mesh PART");
+        // A plan is about the triangles its run certified; for a STEP part those are the run
+        // folder's mesh.off (tessellating again here could differ and would not be checked).
+        if (certipose::is_step_path(a.mesh))
+            throw usage_error("--mesh: " + a.mesh.string() +
+                              " is a STEP file; give the tessellation the plan is for, mesh.off in the certipose-part "
+                              "run's folder");
         if (!text.scale.empty()) a.scale = parse_double("--scale", text.scale, "a positive finite factor");
         if (a.title.empty()) a.title = "certipose plan: " + a.plan.filename().string();
         check_output("--out", a.out);

@@ -108,7 +108,11 @@ struct part_program {
 
         std::vector<certipose::named_path> files_read() const { return inputs.paths(); }
         std::vector<certipose::named_path> files_written() const {
-            return {{"--out", out}, {"--out", out / "summary.json"}, {"--out", out / "boxes.jsonl"}, {"--out", out / "boxes.cpbx"}};
+            return {{"--out", out},
+                    {"--out", out / "summary.json"},
+                    {"--out", out / "boxes.jsonl"},
+                    {"--out", out / "boxes.cpbx"},
+                    {"--out", out / "mesh.off"}};
         }
     };
 
@@ -234,6 +238,7 @@ certipose::part_summary describe_run(const arguments& args, const program_inputs
                                                               v->examples};
     }
     s.scene = in.extra.record;
+    s.cad = in.cad;
     return s;
 }
 
@@ -414,9 +419,9 @@ void add_results(certipose::part_summary& s, const certipose::part_result& r, co
 void print_report(const arguments& args, const certipose::part_summary& s, std::size_t resumed, bool occlusion_checked,
                   const interruption& signals) {
     const auto& t = s.totals;
-    std::printf("%s (%zu faces): %zu of %zu facets in %.2f s on %zu rank(s) x %zu threads: %zu valid, %zu boundary "
+    std::printf("%s (%zu %s): %zu of %zu facets in %.2f s on %zu rank(s) x %zu threads: %zu valid, %zu boundary "
                 "boxes, %zu facets skipped\n",
-                args.inputs.mesh.string().c_str(), s.mesh.faces, t.facets, t.facets_selected, t.seconds, t.ranks, t.threads,
+                args.inputs.mesh.string().c_str(), s.mesh.faces, s.cad ? "triangles" : "faces", t.facets, t.facets_selected, t.seconds, t.ranks, t.threads,
                 t.valid, t.boundary, t.skipped);
     if (resumed > 0) std::printf("  resumed: %zu facet(s) were finished by the run it continues\n", resumed);
     if (t.reason != certipose::termination::completed)
@@ -425,7 +430,17 @@ void print_report(const arguments& args, const certipose::part_summary& s, std::
     if (!occlusion_checked)
         std::printf("  occlusion NOT checked (--occlusion none): VALID boxes hold for every constraint but occlusion\n");
     if (const std::string text = scene_text(args.inputs.scene); !text.empty()) std::printf("  scene: %s\n", text.c_str());
+    if (s.cad) {
+        double deviation = 0;
+        for (const auto& f : s.cad->faces.faces) deviation = std::max(deviation, f.deviation);
+        std::printf("  CAD: %zu faces (file unit %s), tessellated at %.3g mm and %.3g rad; the triangles are what is "
+                    "certified, at most %.3g mm from the surfaces (sampled)%s\n",
+                    s.cad->faces.faces.size(), s.cad->unit.empty() ? "not given" : s.cad->unit.c_str(), s.cad->deflection * 1e3,
+                    s.cad->angular_deflection, deviation * 1e3,
+                    s.cad->dropped_triangles ? (", " + std::to_string(s.cad->dropped_triangles) + " degenerate triangles left out").c_str() : "");
+    }
     std::printf("wrote %s", (args.out / "summary.json").string().c_str());
+    if (s.cad) std::printf(", %s", (args.out / "mesh.off").string().c_str());
     if (args.write_jsonl) std::printf(", %s", (args.out / "boxes.jsonl").string().c_str());
     if (args.write_binary) std::printf(", %s", (args.out / "boxes.cpbx").string().c_str());
     std::printf("\n");
@@ -438,7 +453,10 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
     stage_line stage("certipose-part", args.quiet || proc.rank != 0 || !certipose::checks_occlusion<Occlusion>);
     const auto part = build_solver<part_solver_for<Occlusion>>(args.inputs, in, stage);
     stage.done();
-    if (proc.rank == 0) warn_about_scene("certipose-part", part.solver().occlusion(), args.quiet);
+    if (proc.rank == 0) {
+        warn_about_scene("certipose-part", part.solver().occlusion(), args.quiet);
+        warn_about_units("certipose-part", args.inputs, in.mesh, part.solver().camera(), part.solver().range(), args.quiet);
+    }
 
     certipose::part_options opt = part_options_for(args, in.mesh.num_faces(), signals.token());
     certipose::part_summary s = describe_run(args, in, part, opt);
@@ -471,6 +489,10 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
 
     add_results(s, r, journal->done().facets, args, selection.size(), budget_spent, journal->seconds(), signals);
     try {
+        // A STEP part: the triangles the certificates are for, in metres, beside them (read by
+        // the other programs as --mesh; the same digest). Written before the summary that
+        // names them; a mesh file is not copied (it is the input).
+        if (in.cad) certipose::write_mesh_off(args.out / "mesh.off", in.mesh);
         if (stores.binary) stores.binary->finish();
         journal->commit(certipose::json_text(certipose::part_summary_to_json(s)));
     } catch (const certipose::error& e) {
@@ -482,6 +504,7 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
     std::error_code gone;
     if (!args.write_jsonl) fs::remove(args.out / "boxes.jsonl", gone);
     if (!args.write_binary) fs::remove(args.out / "boxes.cpbx", gone);
+    if (!in.cad) fs::remove(args.out / "mesh.off", gone);  // never the input: files_written names it
     if (!args.quiet) print_report(args, s, from.first > 0 ? journal->done().facets.size() : 0, certipose::checks_occlusion<Occlusion>, signals);
     return signals.interrupted() ? signals.exit_code() : exit_ok;
 }

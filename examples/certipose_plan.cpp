@@ -202,6 +202,7 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     const auto part = build_solver<certipose::part_solver<policies>>(args.inputs, in, stage);
     stage.done();
     warn_about_scene("certipose-plan", part.solver().occlusion(), args.quiet);
+    warn_about_units("certipose-plan", args.inputs, in.mesh, part.solver().camera(), part.solver().range(), args.quiet);
     const auto& solver = part.solver();
     const bool progress = show_progress(args.quiet);
 

@@ -65,6 +65,7 @@ certipose::solve_result<I> solve_with(const certipose_solve::arguments& args, co
         certipose_program::build_solver<certipose::pose_solver<certipose::calibrated_pipeline<Occlusion>>>(args.inputs, in, stage);
     stage.done();
     certipose_program::warn_about_scene("certipose-solve", s.occlusion(), args.quiet);
+    certipose_program::warn_about_units("certipose-solve", args.inputs, in.mesh, s.camera(), s.range(), args.quiet);
     if constexpr (std::is_same_v<Occlusion, certipose::aabb_occlusion>)
         if (const auto* survey = s.occlusion().survey(); survey && !args.quiet && args.facet < survey->hidden.size() &&
                                                          certipose::material_in_front(survey->hidden[args.facet]))

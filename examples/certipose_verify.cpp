@@ -113,6 +113,7 @@ int verify_program::run(const arguments& args, const interruption& signals) {
     certipose::facet_inspector<policies> inspector(solver);
     stage.done();
     warn_about_scene("certipose-verify", solver.occlusion(), args.quiet);
+    warn_about_units("certipose-verify", args.inputs, in.mesh, solver.camera(), solver.range(), args.quiet);
 
     double total = 0;
     for (double a : inspector.areas()) total += a;

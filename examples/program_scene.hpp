@@ -1,7 +1,8 @@
 // examples/program_scene.hpp — the inputs of the certipose programs, the part that needs the mesh
 // reader (not a library header; their flags are declared and checked in program_skeleton.hpp and
 // program_support.hpp): `read_inputs`
-// reads the mesh, the --occluder meshes (same reader, same errors), the camera and the placement
+// reads the part (a mesh, or a STEP file when the programs are built with certipose::step:
+// CERTIPOSE_PROGRAMS_READ_STEP), the --occluder meshes (same reader, same errors), the camera and the placement
 // tolerance, always in that order; the scene's records for the outputs (io/scene_record.hpp);
 // and naming an occluder's file in the occlusion policy's errors (the policies check that every
 // scene mesh is a closed solid and call the extra meshes "occluder 0", "occluder 1", ... in the
@@ -14,11 +15,20 @@
 #include <certipose/io/json.hpp>
 #include <certipose/io/output_files.hpp>
 #include <certipose/io/scene_record.hpp>
+#include <certipose/io/step_path.hpp>
+#if defined(CERTIPOSE_PROGRAMS_READ_STEP)
+#include <certipose/io/read_step.hpp>
+#endif
 
 #include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -36,6 +46,10 @@ inline scene read_scene(const scene_arguments& args, stage_line* stage = nullptr
     s.occluders.reserve(args.occluders.size());
     for (const auto& o : args.occluders) {
         if (stage) stage->show("reading " + o.path.string());
+        if (certipose::is_step_path(o.path))
+            throw certipose::io_error(o.path.string(), "--occluder " + o.path.string() +
+                                                           ": occluders are read as meshes (OFF, OBJ, PLY, STL), not STEP; "
+                                                           "export the fixture as a mesh in metres");
         s.occluders.push_back(certipose::read_mesh(o.path, {.scale = o.scale}));
         s.record.occluders.push_back(certipose::describe_occluder(o.path.string(), o.scale, s.occluders.back()));
     }
@@ -72,23 +86,42 @@ inline void apply_placement(certipose::inspection_task& task, const scene_argume
 
 /// What a program reads before it solves.
 struct program_inputs {
-    certipose::triangle_mesh mesh;  ///< --mesh × --scale
-    certipose::camera_task camera;  ///< --camera, its task with the run's placement tolerance
-    scene extra;                    ///< the --occluder meshes and the scene's record
+    certipose::triangle_mesh mesh;            ///< --mesh × --scale, or a STEP file's tessellation (metres)
+    std::optional<certipose::cad_model> cad;  ///< a STEP file's faces and tessellation; none for a mesh
+    certipose::camera_task camera;            ///< --camera, its task with the run's placement tolerance
+    scene extra;                              ///< the --occluder meshes and the scene's record
 };
 
-/// Reads the inputs in one order (the mesh, the occluders, the camera), then resolves the
+/// The part: a mesh file read by read_mesh (× --scale), or a STEP file read by read_step with
+/// --deflection; io_error names the file, also when this build of the programs reads no STEP.
+inline std::pair<certipose::triangle_mesh, std::optional<certipose::cad_model>> read_part(const input_arguments& args) {
+    if (!certipose::is_step_path(args.mesh)) return {certipose::read_mesh(args.mesh, {.scale = args.scale}), std::nullopt};
+#if defined(CERTIPOSE_PROGRAMS_READ_STEP)
+    certipose::step_options opt;
+    opt.deflection = args.deflection;
+    if (args.angular_deflection) opt.angular_deflection = *args.angular_deflection;
+    certipose::step_part p = certipose::read_step(args.mesh, opt);
+    return {std::move(p.mesh), std::move(p.cad)};
+#else
+    throw certipose::io_error(args.mesh.string(), args.mesh.string() +
+                                                      ": a STEP file, and these programs were built without a STEP reader "
+                                                      "(OpenCASCADE was not found: Debian libocct-data-exchange-dev); "
+                                                      "give a mesh (OFF, OBJ, PLY, STL) or rebuild");
+#endif
+}
+
+/// Reads the inputs in one order (the part, the occluders, the camera), then resolves the
 /// placement tolerance against the mesh; io_error / mesh_error / invalid_argument name the file.
 /// `stage` says what is being read on a terminal.
 inline program_inputs read_inputs(const input_arguments& args, stage_line& stage) {
-    stage.show("reading " + args.mesh.string());
-    certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = args.scale});
+    stage.show((certipose::is_step_path(args.mesh) ? "reading and tessellating " : "reading ") + args.mesh.string());
+    auto [mesh, cad] = read_part(args);
     scene extra = read_scene(args.scene, &stage);
     stage.show("reading " + args.camera.string());
     certipose::camera_task camera = read_camera(args.camera, args.scene);
     apply_placement(camera.task, args.scene, mesh);
     stage.done();
-    return {std::move(mesh), std::move(camera), std::move(extra)};
+    return {std::move(mesh), std::move(cad), std::move(camera), std::move(extra)};
 }
 
 /// Returns `build()` (a solver being built); a mesh_error of the occlusion policy about
@@ -158,6 +191,37 @@ void warn_about_scene(const char* program, const Occlusion& occlusion, bool quie
             std::cerr << " because it is not a set of clean closed solids: " << occlusion.why_not_solid();
         std::cerr << "\n" << program << ": warning: " << survey_text(*s) << "\n";
         for (const auto& e : s->examples) std::cerr << program << ": warning:   " << e << "\n";
+    }
+}
+
+/// Says on stderr (unless quiet) when the part's size makes the task impossible for the camera
+/// because of a unit, naming the likely one: a part over 100 times the camera's farthest
+/// distance d_max across (a millimetre mesh read as metres: 200 m seen from 0.8 m), or one that
+/// would span fewer than 4 pixels from the nearest distance d_min (a metre mesh scaled as if it
+/// were millimetres). A real part can be large (cameras then see it face by face) or small, but
+/// not by factors like these. A STEP file carries its unit: not checked.
+template <class Camera>
+void warn_about_units(const char* program, const input_arguments& args, const certipose::triangle_mesh& mesh,
+                      const Camera& camera, certipose::distance_range range, bool quiet) {
+    if (quiet || certipose::is_step_path(args.mesh) || mesh.num_faces() == 0) return;
+    const auto brief = [](double x) {  // 3 significant digits: for a person, not a file
+        std::ostringstream s;
+        s << std::setprecision(3) << x;
+        return s.str();
+    };
+    const double size = mesh.bbox().diagonal().norm();
+    const std::string across = brief(size) + " m across";
+    const std::string scaled = args.scale == 1.0 ? "" : " after --scale " + certipose::detail::format_double(args.scale);
+    if (std::isfinite(range.max) && size > 100 * range.max) {
+        std::cerr << program << ": warning: the part is " << across << scaled << ", and the camera sees from at most "
+                  << brief(range.max) << " m: is the mesh in millimetres? Its coordinates are read "
+                  << "as metres: give --scale 0.001 (inches: --scale 0.0254)\n";
+    } else if (range.min > 0 && size * camera.intrinsics()(0, 0) / range.min < 4) {
+        std::cerr << program << ": warning: the part is " << across << scaled << ", fewer than 4 pixels from the nearest "
+                  << "distance the camera sees it from (" << brief(range.min)
+                  << " m): are its coordinates metres already? " << (args.scale == 1.0 ? "Check the mesh's unit"
+                                                                                        : "Drop --scale")
+                  << " (docs/conventions.md#units)\n";
     }
 }
 

@@ -24,7 +24,8 @@
 // throws as one line "<name>: ..." (exit 1).
 //
 // The flags several programs share are declared once here, each with its parser:
-// - the inputs: --mesh, --camera, --scale and the scene options of program_support.hpp
+// - the inputs: --mesh (a mesh, or a STEP file with --deflection), --camera, --scale and the
+//   scene options of program_support.hpp
 //   (`add_input_options`, `parse_input_options`; program_scene.hpp reads them, `read_inputs`);
 // - the facet solver: --position-eps, --orientation-eps, the two per-facet budgets and the
 //   paving's flags (`add_solver_options`, `parse_solver_options`), read into
@@ -37,6 +38,7 @@
 #include "program_support.hpp"
 
 #include <certipose/io/output_files.hpp>
+#include <certipose/io/step_path.hpp>
 #include <certipose/solver/occlusion_choice.hpp>
 #include <certipose/solver/solve_settings.hpp>
 
@@ -44,6 +46,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <numbers>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -53,17 +56,19 @@ namespace certipose_program {
 
 // ---- the inputs -----------------------------------------------------------------------------
 
-/// --mesh, --camera, --scale and the scene options as given.
+/// --mesh, --camera, --scale, --deflection and the scene options as given.
 struct input_options_text {
-    std::string mesh, camera, scale;
+    std::string mesh, camera, scale, deflection;
     scene_options_text scene;
 };
 
 /// The inputs of a program that reads a part and a camera, checked.
 struct input_arguments {
-    std::filesystem::path mesh;    ///< --mesh: OFF, OBJ, PLY or STL
+    std::filesystem::path mesh;    ///< --mesh: OFF, OBJ, PLY, STL, or STEP (.step, .stp)
     std::filesystem::path camera;  ///< --camera: camera/task JSON or a calibration file
-    double scale = 1.0;            ///< --scale: mesh coordinates × S
+    double scale = 1.0;            ///< --scale: mesh coordinates × S (not for STEP: it has its unit)
+    std::optional<double> deflection;          ///< --deflection LIN (STEP only; unset: the reader's default)
+    std::optional<double> angular_deflection;  ///< --deflection LIN,ANG (STEP only)
     scene_arguments scene;         ///< --occluder, --keep-in, --keep-out, --part-tolerance, ...
 
     /// The files read: no output may be one of them.
@@ -74,10 +79,12 @@ struct input_arguments {
     }
 };
 
-/// Adds --mesh, --camera, --scale and the scene options to `app`.
+/// Adds --mesh, --camera, --scale, --deflection and the scene options to `app`.
 inline void add_input_options(CLI::App& app, input_options_text& text,
-                              const char* scale_help = "multiply mesh coordinates by S (e.g. 0.001 for mm)") {
-    app.add_option("--mesh", text.mesh, "part mesh: OFF, OBJ, PLY or STL (triangles only)")
+                              const char* scale_help = "multiply mesh coordinates by S (e.g. 0.001 for mm; not for STEP)") {
+    app.add_option("--mesh", text.mesh,
+                   "the part: a mesh (OFF, OBJ, PLY or STL; triangles only) or a STEP file (.step, .stp; read in metres "
+                   "and tessellated, see --deflection)")
         ->type_name("PART")
         ->required()
         ->check(CLI::ExistingFile);
@@ -88,6 +95,10 @@ inline void add_input_options(CLI::App& app, input_options_text& text,
         ->required()
         ->check(CLI::ExistingFile);
     app.add_option("--scale", text.scale, scale_help)->type_name("S");
+    app.add_option("--deflection", text.deflection,
+                   "STEP only: the tessellation's chordal deflection, metres (default: 1/1000 of the part's diagonal), "
+                   "and its angular deflection, radians (default 0.5); what is certified is the tessellation")
+        ->type_name("LIN[,ANG]");
     add_scene_options(app, text.scene);
 }
 
@@ -96,7 +107,28 @@ inline input_arguments parse_input_options(const input_options_text& text) {
     input_arguments a;
     a.mesh = text.mesh;
     a.camera = text.camera;
-    if (!text.scale.empty()) a.scale = parse_double("--scale", text.scale, "a positive finite factor");
+    const bool step = certipose::is_step_path(a.mesh);
+    if (!text.scale.empty()) {
+        if (step)
+            throw usage_error("--scale: " + a.mesh.string() +
+                              " is a STEP file, which carries its length unit (it is read in metres); --scale is for meshes");
+        a.scale = parse_double("--scale", text.scale, "a positive finite factor");
+    }
+    if (!text.deflection.empty()) {
+        if (!step)
+            throw usage_error("--deflection: " + a.mesh.string() +
+                              " is a mesh, already tessellated; --deflection is for STEP files");
+        const auto comma = text.deflection.find(',');
+        a.deflection = parse_double("--deflection", text.deflection.substr(0, comma), "a positive finite length in metres");
+        if (comma != std::string::npos) {
+            const double angle = parse_double("--deflection", text.deflection.substr(comma + 1),
+                                              "an angle in radians, in (0, pi)");
+            if (!(angle < std::numbers::pi))
+                throw usage_error("--deflection: the angular deflection must be in (0, pi) radians, got " +
+                                  text.deflection.substr(comma + 1));
+            a.angular_deflection = angle;
+        }
+    }
     a.scene = parse_scene_options(text.scene, a.camera);
     return a;
 }

@@ -26,6 +26,7 @@
 #include "certipose/pose/pose_box.hpp"  // IWYU pragma: export
 #include "certipose/pose/rotation.hpp"  // IWYU pragma: export
 
+#include "certipose/geometry/cad_faces.hpp"  // IWYU pragma: export
 #include "certipose/geometry/sample_part.hpp"  // IWYU pragma: export
 #include "certipose/geometry/triangle_mesh.hpp"  // IWYU pragma: export
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import json as _json
 import os as _os
 import warnings as _warnings
-from typing import Any, Callable, Iterator, NamedTuple, Optional, Sequence, Union
+from typing import Any, Callable, Iterator, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as _np
 
@@ -28,7 +28,7 @@ from ._errors import Error, FileError, GeometryError, InvalidArgument, MeshError
 
 __all__ = [
     "Mesh", "Camera", "Solver", "Boxes", "FacetResult", "PartResult", "PartIterator", "Progress", "Coverage", "Plan",
-    "solve_facet", "solve_part", "iter_part", "plan", "verify", "export", "camera", "read_part", "read_plan",
+    "solve_facet", "solve_part", "iter_part", "plan", "verify", "export", "camera", "read_part", "read_plan", "read_step",
     "Error", "InvalidArgument", "OutOfRange", "MeshError", "FileError", "GeometryError",
     "BOUNDARY_REASONS",
 ]
@@ -479,6 +479,20 @@ def read_part(folder: Union[str, _os.PathLike]) -> PartResult:
     """A certipose-part folder (summary.json, and boxes.cpbx or boxes.jsonl) as a PartResult."""
     facets, bounds, classes, reasons, summary = _core.read_part(_os.fspath(folder))
     return PartResult(facets, bounds, classes, reasons, _json.loads(summary), folder=_os.fspath(folder))
+
+
+def read_step(path: Union[str, _os.PathLike], deflection: Optional[float] = None,
+              angular_deflection: Optional[float] = None) -> Tuple["Mesh", dict]:
+    """A STEP file (AP203, AP214, AP242) read in metres from its unit and tessellated, as
+    certipose-part reads one (docs/step.md): returns (mesh, cad). `deflection`: the chordal
+    deflection in metres (None: 1/1000 of the part's diagonal); `angular_deflection` in radians
+    (None: 0.5). What is certified is the tessellation, `mesh`. `cad` holds "unit" (the file's),
+    "deflection", "angular_deflection", "dropped_triangles", "face_of" (the CAD face of each
+    facet, an int64 array) and "faces": per CAD face a dict of "id", "name" ("" when the file
+    gives none), "surface" ("plane", "cylinder", ...), "area" (m²), "deviation" (the largest
+    sampled distance between the face and its triangles, m) and "facets" (an int64 array).
+    Mesh.read(path) reads the same mesh without the faces."""
+    return _core.read_step(_os.fspath(path), deflection, angular_deflection)
 
 
 def read_plan(path: Union[str, _os.PathLike]) -> Plan:

@@ -31,6 +31,10 @@
 #include <certipose/io/plan_files.hpp>
 #include <certipose/io/plan_gltf.hpp>
 #include <certipose/io/plan_html.hpp>
+#include <certipose/io/step_path.hpp>
+#if defined(CERTIPOSE_PYTHON_READ_STEP)
+#include <certipose/io/read_step.hpp>
+#endif
 #include <certipose/io/verify_poses.hpp>
 #include <certipose/part/part_solver.hpp>
 #include <certipose/part/selection.hpp>
@@ -945,6 +949,39 @@ py::dict verify_py(const solver& s, py::object poses_in, bool tolerance, py::obj
                                                 py::arg("coverage") = total > 0 ? union_area / total : 0.0));
 }
 
+/// A STEP file read in metres and tessellated (read_step): its Mesh and its CAD model as a dict
+/// (unit, deflections, dropped triangles, "face_of" per facet, and per face its id, name,
+/// surface, area, deviation and facets); io_error naming the file when this build has no
+/// STEP reader.
+py::tuple read_step(const std::string& path, std::optional<double> deflection, std::optional<double> angular_deflection) {
+#if defined(CERTIPOSE_PYTHON_READ_STEP)
+    cp::step_options o;
+    o.deflection = deflection;
+    if (angular_deflection) o.angular_deflection = *angular_deflection;
+    cp::step_part p = run_released([&](std::stop_token) { return cp::read_step(path, o); });
+    py::list faces;
+    for (std::size_t i = 0; i < p.cad.faces.faces.size(); ++i) {
+        const cp::cad_face& f = p.cad.faces.faces[i];
+        std::vector<std::int64_t> facets(f.facets.begin(), f.facets.end());
+        const std::size_t n = facets.size();
+        faces.append(py::dict(py::arg("id") = i, py::arg("name") = f.name, py::arg("surface") = f.surface,
+                              py::arg("area") = f.area, py::arg("deviation") = f.deviation,
+                              py::arg("facets") = owned<std::int64_t>({n}, std::move(facets))));
+    }
+    std::vector<std::int64_t> face_of(p.cad.faces.face_of.begin(), p.cad.faces.face_of.end());
+    const std::size_t n = face_of.size();
+    py::dict cad(py::arg("unit") = p.cad.unit, py::arg("deflection") = p.cad.deflection,
+                 py::arg("angular_deflection") = p.cad.angular_deflection,
+                 py::arg("dropped_triangles") = p.cad.dropped_triangles, py::arg("faces") = faces,
+                 py::arg("face_of") = owned<std::int64_t>({n}, std::move(face_of)));
+    return py::make_tuple(std::make_shared<cp::triangle_mesh>(std::move(p.mesh)), cad);
+#else
+    (void)deflection, (void)angular_deflection;
+    throw cp::io_error(path, path + ": a STEP file, and this build of certipose reads no STEP (OpenCASCADE was not "
+                                    "found when it was built: Debian libocct-data-exchange-dev); give a mesh or rebuild");
+#endif
+}
+
 /// A certipose-part folder's boxes as arrays and its summary.json as text.
 py::tuple read_part(const std::string& folder) {
     std::vector<std::int64_t> facets;
@@ -983,6 +1020,16 @@ PYBIND11_MODULE(_core, m) {
         .def_static(
             "read",
             [](const std::string& path, double scale, std::optional<double> weld) {
+                if (cp::is_step_path(path)) {  // in metres, at the default tessellation
+                    if (scale != 1.0)
+                        throw cp::invalid_argument("scale", path + " is a STEP file, which carries its length unit "
+                                                                   "(it is read in metres); scale is for meshes");
+                    if (weld)
+                        throw cp::invalid_argument("weld_tolerance", path + " is a STEP file: its tessellation is "
+                                                                            "welded exactly; weld_tolerance is for meshes");
+                    return read_step(path, std::nullopt, std::nullopt)[0]
+                        .cast<std::shared_ptr<cp::triangle_mesh>>();
+                }
                 cp::read_options o;
                 o.scale = scale;
                 o.weld_tolerance = weld;
@@ -1102,6 +1149,7 @@ PYBIND11_MODULE(_core, m) {
           py::arg("mesh_path"), py::arg("scale"), py::arg("options"), py::arg("progress"));
     m.def("verify", &verify_py, py::arg("solver"), py::arg("poses"), py::arg("tolerance"), py::arg("progress"));
     m.def("read_part", &read_part, py::arg("folder"));
+    m.def("read_step", &read_step, py::arg("path"), py::arg("deflection") = py::none(), py::arg("angular_deflection") = py::none());
     m.def("run_record", &run_record_json, py::arg("solver"));
     m.def("write_atomically", [](const std::string& path, py::bytes content) { write_atomically(path, std::string(content)); });
     m.attr("has_viewer") = !certipose_viewer_script.empty();

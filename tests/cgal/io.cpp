@@ -468,13 +468,23 @@ TEST_CASE("PLAN.json: bad documents are errors naming the file and the JSON path
           bad.string() + ": \"version\": 9 is not supported (this build reads version 1)");
 }
 
-TEST_CASE("summary.json: format and version lead, mount_offset round-trips, other versions are refused") {
+namespace {
+
+/// A summary.json record of a 4-facet part at ε_p 0.1, ε_o 0.38, without facets.
+certipose::part_summary small_summary(const std::string& mesh_path) {
     certipose::part_summary s;
-    s.mesh = {"part.off", 4, 1.0, "0123456789abcdef"};
+    s.mesh = {mesh_path, 4, 1.0, "0123456789abcdef"};
     s.camera = sample_plan().camera;
     s.task = {0.35, std::nullopt};
     s.settings.position_eps = 0.1;
     s.settings.orientation_eps = 0.38;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("summary.json: format and version lead, mount_offset round-trips, other versions are refused") {
+    certipose::part_summary s = small_summary("part.off");
     s.totals.seconds = 1.5;
     certipose::facet_record own, reused;
     own.index = 1, own.valid = 3;
@@ -511,6 +521,51 @@ TEST_CASE("summary.json: format and version lead, mount_offset round-trips, othe
     other.erase("format");  // older files: no format, no version
     other.erase("version");
     CHECK(certipose::part_summary_from_json(other).camera == s.camera);
+}
+
+TEST_CASE("summary.json: a STEP part's cad record round-trips, and a record that is not a partition is refused naming it") {
+    certipose::part_summary s = small_summary("part.step");
+    certipose::cad_model cad;
+    cad.unit = "INCH";
+    cad.deflection = 1.5e-4;
+    cad.angular_deflection = 0.5;
+    cad.dropped_triangles = 2;
+    cad.faces.face_of = {1, 0, 1, 1};
+    cad.faces.faces = {{"", "plane", 1e-4, 0.0, {1}}, {"the bore", "cylinder", 2.5e-4, 3.75e-5, {0, 2, 3}}};
+    s.cad = cad;
+    const auto j = certipose::part_summary_to_json(s);
+    CHECK(j["cad"]["unit"] == "INCH");
+    CHECK(j["cad"]["faces"][1]["id"] == 1);
+    CHECK(j["cad"]["faces"][1]["name"] == "the bore");
+    CHECK(j["cad"]["faces"][1]["facets"] == nlohmann::json::array({0, 2, 3}));
+    const certipose::part_summary back = certipose::part_summary_from_json(nlohmann::json::parse(j.dump()));
+    REQUIRE(back.cad);
+    CHECK(back.cad->unit == "INCH");
+    CHECK(back.cad->deflection == 1.5e-4);
+    CHECK(back.cad->angular_deflection == 0.5);
+    CHECK(back.cad->dropped_triangles == 2);
+    CHECK(back.cad->faces.face_of == cad.faces.face_of);
+    REQUIRE(back.cad->faces.faces.size() == 2);
+    CHECK(back.cad->faces.faces[1].name == "the bore");
+    CHECK(back.cad->faces.faces[1].surface == "cylinder");
+    CHECK(back.cad->faces.faces[1].deviation == 3.75e-5);
+    CHECK(back.cad->faces.faces[1].facets == cad.faces.faces[1].facets);
+    // a mesh file's run has no cad record
+    s.cad.reset();
+    CHECK(!certipose::part_summary_to_json(s).contains("cad"));
+
+    auto bad = nlohmann::json::parse(j.dump());
+    bad["cad"]["faces"][0]["facets"] = nlohmann::json::array({1, 7});
+    auto e = argument_error([&] { (void)certipose::part_summary_from_json(bad); });
+    CHECK(e.first == "cad.faces[0].facets[1]");
+    CHECK(e.second.find("facet 7 is out of range (mesh.faces = 4)") != std::string::npos);
+    bad = nlohmann::json::parse(j.dump());
+    bad["cad"]["faces"][0]["facets"] = nlohmann::json::array({0});  // facet 0 in both faces, facet 1 in none
+    e = argument_error([&] { (void)certipose::part_summary_from_json(bad); });
+    CHECK(e.first == "cad.faces");
+    bad = nlohmann::json::parse(j.dump());
+    bad["cad"]["faces"][1]["id"] = 5;
+    CHECK(argument_error([&] { (void)certipose::part_summary_from_json(bad); }).first == "cad.faces[1].id");
 }
 
 TEST_CASE("POSES.json: a 4x4 whose rotation is orthonormal only within 1e-6 gets a box holding the rotation it approximates") {

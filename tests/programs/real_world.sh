@@ -193,4 +193,23 @@ usage certipose-verify "--min-view-angle" "$verify" --mesh "$mesh" --camera open
     --working-distance 0.49,0.77 --out r.json
 usage certipose-plan "--working-distance" "$plan" --mesh "$mesh" --camera "$camera" --part-results run --out x.json \
     --working-distance 0.49,0.77
+
+# Units a person cannot get wrong: the sample part (metres) as if it were millimetres read as
+# metres (x1000: ~300 m seen from under a metre) and as if it were metres scaled as millimetres
+# (x0.001: a third of a millimetre) each solve, with a warning naming the likely unit and --scale;
+# at its true size, no warning.
+"$solve" --mesh "$mesh" --scale 1000 --camera "$camera" "${eps[@]}" --facet "$facet" --out big.json >out 2>err ||
+    fail "certipose-solve on the mesh x1000 failed: $(cat err)"
+grep -q "certipose-solve: warning: the part is .* m across after --scale 1000, .*is the mesh in millimetres.*--scale 0.001" err ||
+    fail "no unit warning for a part x1000: $(cat err)"
+"$part" --mesh "$mesh" --scale 0.001 --camera "$camera" "${eps[@]}" --facets 0-3 --out tiny --quiet >out 2>err ||
+    fail "certipose-part on the mesh x0.001 failed: $(cat err)"
+[ ! -s err ] || fail "--quiet printed: $(cat err)"
+"$part" --mesh "$mesh" --scale 0.001 --camera "$camera" "${eps[@]}" --facets 0-3 --out tiny >out 2>err ||
+    fail "certipose-part on the mesh x0.001 failed: $(cat err)"
+grep -q "certipose-part: warning: the part is .* m across after --scale 0.001, fewer than 4 pixels.*Drop --scale" err ||
+    fail "no unit warning for a part x0.001: $(cat err)"
+"$solve" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facet "$facet" --out true.json >out 2>err ||
+    fail "certipose-solve at true size failed: $(cat err)"
+grep -q "warning: the part is" err && fail "a unit warning at the part's true size: $(cat err)"
 exit 0

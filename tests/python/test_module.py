@@ -574,3 +574,42 @@ def test_the_stub_names_the_api():
     methods = {n.name for n in solver_stub.body if isinstance(n, ast.FunctionDef)}
     public = {m for m in dir(certipose.Solver) if not m.startswith("_")}
     assert public <= methods | {"occlusion"}, public - methods
+
+
+STEP = SHARED / "cad" / "featuretype.STEP"
+
+
+def test_read_step_is_the_programs_tessellation_with_its_faces(tmp_path):
+    mesh, cad = certipose.read_step(STEP)
+    assert cad["unit"] == "INCH" and cad["angular_deflection"] == 0.5 and cad["dropped_triangles"] >= 0
+    assert len(cad["faces"]) == 96
+    kinds = {}
+    for f in cad["faces"]:
+        kinds[f["surface"]] = kinds.get(f["surface"], 0) + 1
+    assert kinds == {"plane": 49, "cylinder": 46, "bspline": 1}
+    # the faces' facets are a partition of the facets, and face_of the same map read the other way
+    facets = np.sort(np.concatenate([f["facets"] for f in cad["faces"]]))
+    assert np.array_equal(facets, np.arange(mesh.num_faces))
+    for f in cad["faces"]:
+        assert np.all(cad["face_of"][f["facets"]] == f["id"])
+        assert f["area"] > 0 and 0 <= f["deviation"] <= 1.01 * cad["deflection"]
+    # the programs' tessellation: certipose-part's mesh.off is the same mesh, bit for bit
+    subprocess.run([PART, "--mesh", str(STEP), "--camera", CAMERA, "--position-eps", "0.1", "--orientation-eps", "0.38",
+                    "--facets", "0", "--out", str(tmp_path / "run"), "--quiet"], check=True)
+    off = certipose.Mesh.read(str(tmp_path / "run" / "mesh.off"))
+    assert np.array_equal(off.vertices, mesh.vertices) and np.array_equal(off.faces, mesh.faces)
+    assert off.digest == mesh.digest
+    # Mesh.read reads it too, in metres; a scale is refused (the file has its unit)
+    assert certipose.Mesh.read(str(STEP)).digest == mesh.digest
+    with pytest.raises(certipose.InvalidArgument, match="carries its length unit") as e:
+        certipose.Mesh.read(str(STEP), 0.0254)
+    assert e.value.field == "scale"
+    # a finer tessellation has more facets, each face within the finer deflection (the sampled
+    # maximum of one face need not shrink: OpenCASCADE places the new vertices)
+    finer, fine = certipose.read_step(STEP, deflection=cad["deflection"] / 2, angular_deflection=0.25)
+    assert finer.num_faces > mesh.num_faces and fine["deflection"] == cad["deflection"] / 2
+    assert max(f["deviation"] for f in fine["faces"]) <= 1.01 * fine["deflection"]
+    with pytest.raises(certipose.InvalidArgument, match="deflection"):
+        certipose.read_step(STEP, deflection=0.0)
+    with pytest.raises(certipose.FileError, match="missing.step"):
+        certipose.read_step(tmp_path / "missing.step")

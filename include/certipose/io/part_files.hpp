@@ -13,12 +13,15 @@
 // "task", "settings" (every option that changes the answer: ε_p, ε_o, budgets, occlusion,
 // "mesh_semantics", "paving" and carving's steps, "refine_seconds", "grow", "max_boxes",
 // "facets", "keep_largest", "box_store", "reuse"), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
-// "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none),
+// "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none), "cad" (a part read
+// from a CAD file: {"unit", "deflection", "angular_deflection", "dropped_triangles", "faces":
+// [{"id", "name", "surface", "area", "deviation", "facets"}]}, geometry/cad_faces.hpp; absent: a mesh),
 // "facets": [{"index", "valid", "boundary", "seconds", "termination",
 // "reason" (when skipped), "dropped", "reused_from" (part_options::reuse), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
 #pragma once
 
+#include "certipose/geometry/cad_faces.hpp"
 #include "certipose/io/json.hpp"
 #include "certipose/io/result_document.hpp"
 #include "certipose/part/part_solver.hpp"
@@ -160,6 +163,9 @@ struct part_summary {
     std::optional<survey_record> survey{};
     /// The run's external occluders and camera regions ("occluders", "keep_in", "keep_out").
     scene_record scene{};
+    /// The CAD model the mesh is the tessellation of (absent: a mesh file). Part of what the run
+    /// was for: a resumed run must have the same tessellation.
+    std::optional<cad_model> cad{};
     std::vector<facet_record> facets;
     totals_record totals;
 };
@@ -275,6 +281,25 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
                        {"examples", v.examples}};
     }
     put_scene(j, s.scene);
+    if (s.cad) {
+        const auto& c = *s.cad;
+        ordered_json faces = ordered_json::array();
+        for (std::size_t i = 0; i < c.faces.faces.size(); ++i) {
+            const cad_face& f = c.faces.faces[i];
+            const std::string at = "cad.faces[" + std::to_string(i) + "]";
+            faces.push_back({{"id", i},
+                             {"name", f.name},
+                             {"surface", f.surface},
+                             {"area", finite(f.area, at + ".area")},
+                             {"deviation", finite(f.deviation, at + ".deviation")},
+                             {"facets", f.facets}});
+        }
+        j["cad"] = {{"unit", c.unit},
+                    {"deflection", finite(c.deflection, "cad.deflection")},
+                    {"angular_deflection", finite(c.angular_deflection, "cad.angular_deflection")},
+                    {"dropped_triangles", c.dropped_triangles},
+                    {"faces", std::move(faces)}};
+    }
     ordered_json facets = ordered_json::array();
     for (const facet_record& f : s.facets) facets.push_back(facet_record_to_json(f));
     j["facets"] = std::move(facets);
@@ -302,6 +327,49 @@ inline part_summary::mesh_record mesh_record_from_json(const nlohmann::json& j) 
     m.scale = required_number(mesh, "mesh", "scale");
     if (const json* d = find(mesh, "digest")) m.digest = as_string(*d, "mesh.digest", "a string");
     return m;
+}
+
+/// Reads summary.json's "cad" of a mesh of `facet_count` facets; face ids must be 0, 1, ... in
+/// order, and the faces' facet lists a partition of the facets (invalid_argument naming the field).
+inline cad_model cad_model_from_json(const nlohmann::json& c, std::size_t facet_count) {
+    using namespace detail::json_io;
+    cad_model r;
+    require_object(c, "cad");
+    r.unit = as_string(require(c, "cad", "unit", "a string"), "cad.unit", "a string");
+    r.deflection = required_number(c, "cad", "deflection");
+    r.angular_deflection = required_number(c, "cad", "angular_deflection");
+    if (const json* v = find(c, "dropped_triangles")) r.dropped_triangles = as_count(*v, "cad.dropped_triangles");
+    const json& faces = require(c, "cad", "faces", "an array");
+    if (!faces.is_array()) fail("cad.faces", "expected an array, got " + describe(faces));
+    r.faces.face_of.assign(facet_count, 0);
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+        const std::string at = element("cad.faces", i);
+        const json& f = require_object(faces[i], at);
+        if (as_count(require(f, at, "id", "an integer"), child(at, "id")) != i)
+            fail(child(at, "id"), "expected " + std::to_string(i) + " (faces in id order)");
+        cad_face face;
+        face.name = as_string(require(f, at, "name", "a string"), child(at, "name"), "a string");
+        face.surface = as_string(require(f, at, "surface", "a string"), child(at, "surface"), "a string");
+        face.area = required_number(f, at, "area");
+        face.deviation = required_number(f, at, "deviation");
+        const json& list = require(f, at, "facets", "an array");
+        if (!list.is_array()) fail(child(at, "facets"), "expected an array, got " + describe(list));
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            const std::size_t facet = as_count(list[k], element(child(at, "facets"), k));
+            if (facet >= facet_count)
+                fail(element(child(at, "facets"), k),
+                     "facet " + std::to_string(facet) + " is out of range (mesh.faces = " + std::to_string(facet_count) + ")");
+            face.facets.push_back(static_cast<std::uint32_t>(facet));
+            r.faces.face_of[facet] = static_cast<std::uint32_t>(i);
+        }
+        r.faces.faces.push_back(std::move(face));
+    }
+    try {
+        r.faces.validate(facet_count);
+    } catch (const mesh_error& e) {
+        fail("cad.faces", e.what());
+    }
+    return r;
 }
 
 /// Reads summary.json back (what part_summary_to_json writes; extra fields are ignored).
@@ -334,6 +402,7 @@ inline part_summary part_summary_from_json(const nlohmann::json& j) {
             fail("settings.box_store", "expected \"jsonl\", \"binary\" or \"both\", got \"" + s.settings.box_store + "\"");
     }
     s.scene = scene_from_json(j);
+    if (const json* c = find(j, "cad")) s.cad = cad_model_from_json(*c, s.mesh.faces);
     const json& facets = require(j, "", "facets", "an array");
     if (!facets.is_array()) fail("facets", "expected an array, got " + describe(facets));
     for (std::size_t i = 0; i < facets.size(); ++i) s.facets.push_back(facet_record_from_json(facets[i], element("facets", i)));
