@@ -40,7 +40,7 @@ struct leaks_ignored {};
 /// that what read_step itself allocates is still checked (the debug preset).
 const struct step_registered_once {
     step_registered_once() {
-        const leaks_ignored ignored;
+        [[maybe_unused]] const leaks_ignored ignored;
         STEPControl_Controller::Init();
     }
 } registered;
@@ -56,7 +56,7 @@ fs::path scratch(const std::string& name) {
 
 /// Writes `shape` (coordinates in millimetres) as an AP214 STEP file in millimetres.
 void write_step_mm(const TopoDS_Shape& shape, const fs::path& path) {
-    const leaks_ignored ignored;  // OpenCASCADE 7.6's writer leaks a few bytes a file (GeomToStep_MakeDirection)
+    [[maybe_unused]] const leaks_ignored ignored;  // OpenCASCADE 7.6's writer leaks a few bytes a file (GeomToStep_MakeDirection)
     STEPControl_Writer writer;
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     Interface_Static::SetCVal("write.step.unit", "MM");

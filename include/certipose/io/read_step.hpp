@@ -46,7 +46,6 @@
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp_Explorer.hxx>
-#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_ShapeMapHasher.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
@@ -68,10 +67,10 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <system_error>
-#include <unordered_map>
 #include <vector>
 
 namespace certipose {
@@ -145,7 +144,7 @@ inline step_part read_step(const std::filesystem::path& path, const step_options
     if (opt.deflection && !(std::isfinite(*opt.deflection) && *opt.deflection > 0))
         throw invalid_argument("deflection", "read_step: the deflection must be a finite length > 0 (metres), got " +
                                                  detail::mesh::format(*opt.deflection));
-    if (!(opt.angular_deflection > 0 && opt.angular_deflection < 3.141592653589793))
+    if (!(opt.angular_deflection > 0 && opt.angular_deflection < std::numbers::pi))
         throw invalid_argument("angular_deflection", "read_step: the angular deflection must be in (0, pi) radians, got " +
                                                          detail::mesh::format(opt.angular_deflection));
     if (opt.deviation_samples < 0)
@@ -244,18 +243,19 @@ inline step_part read_step(const std::filesystem::path& path, const step_options
                 triangles.push_back(f);
                 own.emplace_back(cgal_point(a), cgal_point(b), cgal_point(c));
             }
-            record.surface = detail::step::surface_name(BRepAdaptor_Surface(face).GetType());
+            const BRepAdaptor_Surface surface(face);  // with the face's location
+            record.surface = detail::step::surface_name(surface.GetType());
             GProp_GProps props;
             BRepGProp::SurfaceProperties(face, props);
             record.area = props.Mass();
+            // Names are keyed by the face without its location (TopTools_ShapeMapHasher ignores
+            // the orientation), as face_names binds them.
             if (const std::string* name = names.Seek(face.Located(TopLoc_Location()))) record.name = *name;
-            else if (const std::string* n2 = names.Seek(face)) record.name = *n2;
             // The deviation: surface points on an n × n grid of the face's parameter rectangle,
             // those inside the (trimmed) face, against the nearest of the face's triangles.
             if (opt.deviation_samples > 0 && !own.empty()) {
                 double u0, u1, v0, v1;
                 BRepTools::UVBounds(face, u0, u1, v0, v1);
-                const BRepAdaptor_Surface surface(face);  // with the face's location
                 BRepTopAdaptor_FClass2d inside(face, 1e-9);
                 const int n = opt.deviation_samples;
                 for (int i = 0; i < n; ++i)
