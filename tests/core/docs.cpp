@@ -112,3 +112,29 @@ TEST_CASE("the documentation, headers, examples, scripts and benchmarks point no
     MESSAGE(files.size() << " files checked");
     CHECK(found == 0);
 }
+
+TEST_CASE("no test case name holds a semicolon, which CTest would cut off so that the test runs nothing") {
+    // doctest_discover_tests registers each case as `--test-case=<name>`, and CMake reads a ';'
+    // in a name as a list separator: the case is registered under the part before it, a filter
+    // no case matches, and CTest reports "Passed" for a test that ran nothing.
+    const fs::path root = CERTIPOSE_SOURCE_DIR;
+    std::size_t cases = 0, bad = 0;
+    for (const auto& e : fs::recursive_directory_iterator(root / "tests")) {
+        if (!e.is_regular_file() || e.path().extension() != ".cpp") continue;
+        const auto lines = lines_of(e.path());
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const auto at = lines[i].find("TEST_CASE(\"");
+            if (at == std::string::npos) continue;
+            ++cases;
+            const auto begin = at + 11, end = lines[i].find('"', begin);
+            const std::string name = lines[i].substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+            if (name.find(';') != std::string::npos) {
+                ++bad;
+                FAIL_CHECK(fs::relative(e.path(), root).string() << ":" << i + 1 << ": \"" << name << "\" holds a ';'");
+            }
+        }
+    }
+    MESSAGE(cases << " test cases checked");
+    CHECK(cases > 200);
+    CHECK(bad == 0);
+}

@@ -290,7 +290,7 @@ TEST_CASE("optional camera fields may be left out or null") {
     CHECK_FALSE(in.task.max_metres_per_pixel);
 }
 
-TEST_CASE("a pinhole camera reads with its working distances; d_max null is unbounded") {
+TEST_CASE("a pinhole camera reads with its working distances, d_max null is unbounded") {
     json j = pinhole_json();
     auto in = certipose::parse_camera_task(j.dump());
     REQUIRE(std::holds_alternative<certipose::pinhole_camera>(in.camera));
@@ -488,7 +488,7 @@ TEST_CASE("impossible camera and task values are the camera's own invalid_argume
     check(j, "task.max_metres_per_pixel", "must be positive");
 }
 
-TEST_CASE("read_camera_task: missing or unreadable files are io_errors; schema errors name the file") {
+TEST_CASE("read_camera_task: missing or unreadable files are io_errors, schema errors name the file") {
     temp_dir dir;
     CHECK_THROWS_WITH_AS((void)certipose::read_camera_task(dir.path / "nope.json"),
                          doctest::Contains("no such file"), certipose::io_error);
@@ -983,7 +983,7 @@ TEST_CASE_TEMPLATE("the PLY holds the part, the facet and one outward solid per 
     }
 }
 
-TEST_CASE("PLY options: without the part, with aim needles; bad input is refused") {
+TEST_CASE("PLY options: without the part, with aim needles, bad input is refused") {
     const auto mesh = tetrahedron();
     std::vector<certipose::box_record> boxes(3);
     for (auto& b : boxes) {

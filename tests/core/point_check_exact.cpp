@@ -172,7 +172,7 @@ TEST_CASE("a facet vertex projecting a few ulps outside the image is a field-of-
     CHECK(edge_stats.undecidable > 0);
 }
 
-TEST_CASE("ordinary poses never need the exact decision; the counter counts the close calls") {
+TEST_CASE("ordinary poses never need the exact decision, the counter counts the close calls") {
     const sample_part part = make_sample_part();
     const thin_lens_camera camera(thin_lens_parameters{.focal_length = 0.012, .f_stop = 8, .focus_distance = 0.6,
                                                        .max_blur_circle = 6.9e-6, .pixel_pitch = 3.45e-6,

@@ -76,7 +76,7 @@ TEST_CASE("the paper's worked position set models the constraint-set concept") {
     static_assert(PositionConstraintSet<all_of<paper_position_constraints<I>, above_conveyor<I>>, I>);
 }
 
-TEST_CASE("VALID position boxes hold only valid positions; discarded regions only invalid ones") {
+TEST_CASE("VALID position boxes hold only valid positions, discarded regions only invalid ones") {
     const auto range = design_camera().distance_range();
     const inspection_task task{.min_view_angle = 0.35};
     std::mt19937 rng(20231878);

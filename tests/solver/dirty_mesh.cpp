@@ -74,7 +74,7 @@ TEST_CASE("the survey of a dirty mesh: bodies, seams, duplicates, overlaps, buri
     CHECK(clean.buried + clean.covered == 0);
 }
 
-TEST_CASE("dirty meshes: solid semantics refuses them and names the way out; soup and automatic accept them") {
+TEST_CASE("dirty meshes: solid semantics refuses them and names the way out, soup and automatic accept them") {
     const dirty_scene& s = scene();
     const auto message = [](auto&& build) {
         try {

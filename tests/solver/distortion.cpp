@@ -39,7 +39,7 @@ std::vector<distortion_case> cases() {
 
 }  // namespace
 
-TEST_CASE("distortion: VALID boxes of distorted cameras are sound; a pinhole's are not under pincushion") {
+TEST_CASE("distortion: VALID boxes of distorted cameras are sound, a pinhole's are not under pincushion") {
     const solve_options options{.position_eps = 0.1, .orientation_eps = 0.38};
     const brown_conrady pincushion{.k1 = 0.3, .k2 = 0.1}, barrel{.k1 = -0.3};
     std::size_t pinhole_violations = 0;
