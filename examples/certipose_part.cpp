@@ -91,7 +91,7 @@ struct part_program {
         input_options_text inputs;
         solver_options_text solver;
         std::string out, threads, facets, occlusion, time_limit, max_boxes, keep_largest, box_store = "binary";
-        bool boundary = false, quiet = false, no_reuse = false, resume = false;
+        bool boundary = false, quiet = false, no_reuse = false, patches = false, resume = false;
     };
 
     struct arguments {
@@ -101,7 +101,7 @@ struct part_program {
         fs::path out;
         std::size_t threads = 0;
         std::string facets;
-        bool boundary = false, quiet = false, reuse = true, resume = false;
+        bool boundary = false, quiet = false, reuse = true, patches = false, resume = false;
         std::optional<std::size_t> max_boxes, keep_largest;
         std::optional<double> time_limit;
         bool write_jsonl = false, write_binary = true;  ///< --box-store
@@ -129,6 +129,9 @@ struct part_program {
         app.add_flag("--no-reuse", text.no_reuse,
                      "pave every facet on its own (default: a facet nothing can occlude takes the boxes of a translate of "
                      "it, each proven again)");
+        app.add_flag("--patches", text.patches,
+                     "certify patches of neighbouring facets (of one CAD face for a STEP part) at once: the seed's boxes "
+                     "proven for every member (docs/part.md; not yet faster than facet by facet)");
         app.add_option("--keep-largest", text.keep_largest, "keep only the K largest VALID boxes of each facet (6D volume)")
             ->type_name("K");
         app.add_option("--box-store", text.box_store,
@@ -153,6 +156,7 @@ struct part_program {
         a.boundary = text.boundary;
         a.quiet = text.quiet;
         a.reuse = !text.no_reuse;
+        a.patches = text.patches;
         a.resume = text.resume;
         if (!text.max_boxes.empty()) a.max_boxes = parse_count("--max-boxes", text.max_boxes, 1);
         if (!text.time_limit.empty())
@@ -187,6 +191,7 @@ certipose::part_options part_options_for(const arguments& args, std::size_t face
     opt.keep_boundary = args.boundary;
     opt.keep_largest = args.keep_largest;
     opt.reuse.translates = args.reuse;
+    opt.patches.enabled = args.patches;
     opt.regions = args.inputs.scene.regions;  // each facet's VALID boxes, before they are written
     if (!args.facets.empty()) opt.facets = certipose::parse_facet_selection(args.facets, faces);
     opt.stop = stop;
@@ -226,6 +231,11 @@ certipose::part_summary describe_run(const arguments& args, const program_inputs
     st.facets = args.facets;
     st.keep_largest = args.keep_largest;
     st.reuse = args.reuse;
+    if (part.patches(opt)) {  // on, and not turned off by --boundary
+        st.patches = opt.patches;
+        st.patches->max_extent = part.patch_extent(opt.patches);
+        st.patches->faces.clear();
+    }
     st.box_store = args.write_jsonl && args.write_binary ? "both" : args.write_binary ? "binary" : "jsonl";
     st.mesh_semantics = certipose::checks_occlusion<Occlusion> ? "solid" : "none";  // the boolean test reads solids
     const auto& occlusion = part.solver().occlusion();
@@ -459,8 +469,14 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
     }
 
     certipose::part_options opt = part_options_for(args, in.mesh.num_faces(), signals.token());
+    if (in.cad) opt.patches.faces = in.cad->faces.face_of;  // a patch never spans two faces
     certipose::part_summary s = describe_run(args, in, part, opt);
-    const std::vector<std::size_t> selection = certipose::selected_facets(opt, in.mesh.num_faces());
+    // The run's work items, and the facets in the order the run hands them to the sink (patches
+    // grouped): what the journal records, checkpointing between items, and --resume continues.
+    const auto regions = part.patches(opt);
+    const std::vector<std::size_t> chosen = certipose::selected_facets(opt, in.mesh.num_faces());
+    const certipose::work_plan plan = regions ? certipose::work_plan::grouped(chosen, *regions) : certipose::work_plan::per_facet(chosen);
+    const std::vector<std::size_t>& selection = plan.order;
     std::optional<certipose::part_run_journal> journal;
     const resume_point from = agree_on_resume(args, s, selection, journal, proc);
     if (from.status == resume_point::failed_elsewhere) return exit_failure;
@@ -483,7 +499,7 @@ int run_with(const arguments& args, const program_inputs& in, const interruption
     stores.open(args, *journal, certipose::checks_occlusion<Occlusion>);
     certipose::tee_sink<certipose::jsonl_sink<I>, certipose::box_store_sink<I>> both{
         {stores.jsonl ? &*stores.jsonl : nullptr, stores.binary ? &*stores.binary : nullptr}};
-    certipose::journal_sink<decltype(both)> sink{&both, &*journal};
+    certipose::journal_sink<decltype(both)> sink{&both, &*journal, &plan.ends, from.first};
     const certipose::part_result r = nothing_left ? certipose::part_result{} : solve_on(part, opt, sink, journal);
     if (progress) std::fputc('\n', stderr);
 

@@ -4,7 +4,8 @@
 # leave them), one stopped by SIGINT, one by its box budget, and one whose disk filled (a small
 # tmpfs; root only, else that part is skipped) are each continued with --resume, and the folder then holds the very
 # boxes.cpbx of an uninterrupted run, byte for byte, and the same facet records. A resume with
-# another setting or mesh is refused, naming it, and leaves the unfinished run as it was.
+# another setting or mesh is refused, naming it, and leaves the unfinished run as it was. The
+# same for a --patches run killed and budget-stopped.
 #   resume.sh PART MESH CAMERA WORK_DIR
 set -uo pipefail
 part=$1 mesh=$2 camera=$3 work=$4
@@ -84,10 +85,32 @@ grep -q '"termination": *"box_budget"' budget/summary.json || fail "--resume wit
 cmp -s full/boxes.cpbx budget/boxes.cpbx || fail "a budget-stopped run resumed without it differs from the uninterrupted run"
 same_records full budget
 
+# ---- --patches: a run killed or budget-stopped between work items resumes to the same boxes ----
+# (the journal checkpoints only between items, and the rest is grouped as the run grouped it)
+patches_resumed() {
+    run=("${base[@]}" --patches -q)
+    "$part" "${run[@]}" --out pfull || fail "the uninterrupted --patches run failed"
+    grep -q '"patch":' pfull/summary.json || fail "the --patches run patched nothing"
+    start_and_wait pkilled
+    kill -KILL $pid; wait $pid 2>/dev/null
+    [ -e pkilled/summary.json ] && fail "the --patches run finished before SIGKILL; the test needs a longer run"
+    "$part" "${run[@]}" --out pkilled --resume || fail "--resume of a killed --patches run failed"
+    cmp -s pfull/boxes.cpbx pkilled/boxes.cpbx || fail "after SIGKILL and --resume, the --patches boxes.cpbx differs"
+    same_records pfull pkilled
+    "$part" "${run[@]}" --max-boxes 100000 --out pbudget || fail "the --patches run with a box budget failed"
+    grep -q '"termination": *"box_budget"' pbudget/summary.json || fail "--max-boxes 100000 did not stop the --patches run"
+    "$part" "${base[@]}" -q --out pbudget --resume 2>err && fail "--resume without --patches of a --patches run was accepted"
+    grep -q 'settings.patches' err || fail "the differing patches setting is not named: $(cat err)"
+    "$part" "${run[@]}" --out pbudget --resume || fail "--resume of a budget-stopped --patches run failed"
+    cmp -s pfull/boxes.cpbx pbudget/boxes.cpbx || fail "a budget-stopped --patches run resumed differs"
+    same_records pfull pbudget
+}
+
 # ---- a full disk ------------------------------------------------------------------------------
 mkdir -p disk
 if ! mount -t tmpfs -o size=8m tmpfs disk 2>/dev/null; then
     echo "SIGKILL and SIGINT resumed; the full-disk part skipped (mounting a tmpfs needs root)"
+    patches_resumed
     exit 0
 fi
 trap 'umount "$work/disk" 2>/dev/null' EXIT
@@ -100,5 +123,7 @@ mount -o remount,size=96m disk || fail "cannot grow the tmpfs"
 "$part" "${run[@]}" --out disk/run --resume || fail "--resume after a full disk failed"
 cmp -s full/boxes.cpbx disk/run/boxes.cpbx || fail "after a full disk and --resume, boxes.cpbx differs from the uninterrupted run's"
 same_records full disk/run
-echo "SIGKILL (with a torn journal), SIGINT, a box budget and a full disk: each resumed to the uninterrupted run's boxes"
+umount "$work/disk" 2>/dev/null; trap - EXIT
+patches_resumed
+echo "SIGKILL (with a torn journal), SIGINT, a box budget and a full disk: each resumed to the uninterrupted run's boxes; with --patches too"
 exit 0

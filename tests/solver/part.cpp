@@ -99,7 +99,7 @@ TEST_CASE("part: the same facets, boxes and order with 1, 2 and 4 threads") {
     CHECK(runs[2].outcomes[own].record.valid == single.stats.valid);
 }
 
-TEST_CASE("part: translate groups: congruent facets group from any first vertex; mirrored and other shapes do not") {
+TEST_CASE("part: translate groups: congruent facets group from any first vertex, mirrored and other shapes do not") {
     // Four unit squares side by side, two triangles each; the last square lists its first
     // triangle from another vertex and its second one mirrored (the other normal).
     std::vector<Eigen::Vector3d> v;
@@ -205,7 +205,7 @@ TEST_CASE("part: reuse between translates: open facets take a translate's boxes,
         }
 }
 
-TEST_CASE("part: boxes stream to the sink; at most in_flight facets exist at once") {
+TEST_CASE("part: boxes stream to the sink, at most in_flight facets exist at once") {
     const part_solver<> whole(part().mesh, camera(), {.min_view_angle = 0.35});
     struct counting_sink {
         std::size_t facets = 0, boxes = 0, last = 0;
@@ -432,9 +432,11 @@ TEST_CASE("part_schedule: the selection, the box budget in order, and what the s
     collecting_sink<boost_interval> sink;
     std::vector<std::size_t> issued;
     while (const auto w = schedule.next()) {
-        issued.push_back(w->facet);
+        REQUIRE(schedule.plan().members(w->item).size() == 1);
+        const std::size_t f = schedule.plan().members(w->item)[0];
+        issued.push_back(f);
         facet_outcome<boost_interval> out;
-        out.record.index = w->facet;
+        out.record.index = f;
         out.record.valid = 3;
         schedule.emit(sink, out);
     }

@@ -12,12 +12,14 @@
 // "digest"}, "camera": {as in the single-facet result},
 // "task", "settings" (every option that changes the answer: ε_p, ε_o, budgets, occlusion,
 // "mesh_semantics", "paving" and carving's steps, "refine_seconds", "grow", "max_boxes",
-// "facets", "keep_largest", "box_store", "reuse"), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
+// "facets", "keep_largest", "box_store", "reuse", "patches": false or {"max_cone", "max_extent",
+// "max_members", "max_loss"}), "survey" (a triangle soup's, occlusion/mesh_survey.hpp),
 // "occluders", "keep_in", "keep_out" (io/scene_record.hpp; absent: none), "cad" (a part read
 // from a CAD file: {"unit", "deflection", "angular_deflection", "dropped_triangles", "faces":
 // [{"id", "name", "surface", "area", "deviation", "facets"}]}, geometry/cad_faces.hpp; absent: a mesh),
 // "facets": [{"index", "valid", "boundary", "seconds", "termination",
-// "reason" (when skipped), "dropped", "reused_from" (part_options::reuse), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
+// "reason" (when skipped), "dropped", "reused_from" (part_options::reuse), "patch" (the seed of its patch,
+// part_options::patches), "boundary_reasons"}], "totals": {"seconds", "threads", "ranks",
 // "facets", "valid", "boundary", "skipped", "termination", "interrupted"}}.
 #pragma once
 
@@ -141,6 +143,9 @@ struct part_summary {
         std::string facets{};                    ///< the --facets selection as given; empty: all
         std::optional<std::size_t> keep_largest{};  ///< only the K largest VALID boxes per facet kept
         bool reuse = true;  ///< open facets took a translate's boxes, proven again (part_options::reuse)
+        /// Patches certified at once (part_options::patches), with max_extent resolved to
+        /// metres; nothing: facet by facet.
+        std::optional<patch_options> patches{};
     };
     /// What the survey of a triangle soup found (occlusion/mesh_survey.hpp; written when the
     /// scene was read as one).
@@ -198,6 +203,7 @@ inline nlohmann::ordered_json facet_record_to_json(const facet_record& f) {
     if (f.termination == facet_termination::skipped) r["reason"] = f.reason;
     if (f.dropped > 0) r["dropped"] = f.dropped;
     if (f.reused_from) r["reused_from"] = *f.reused_from;
+    if (f.patch) r["patch"] = *f.patch;
     if (f.boundary > 0) {
         ordered_json reasons;
         for (std::size_t k = 0; k < boundary_reason_count; ++k)
@@ -223,6 +229,7 @@ inline facet_record facet_record_from_json(const nlohmann::json& element, const 
     if (const json* reason = find(f, "reason")) r.reason = as_string(*reason, child(path, "reason"), "a string");
     if (const json* dropped = find(f, "dropped")) r.dropped = as_count(*dropped, child(path, "dropped"));
     if (const json* from = find(f, "reused_from")) r.reused_from = as_count(*from, child(path, "reused_from"));
+    if (const json* seed = find(f, "patch")) r.patch = as_count(*seed, child(path, "patch"));
     if (const json* reasons = find(f, "boundary_reasons")) {
         require_object(*reasons, child(path, "boundary_reasons"));
         for (std::size_t k = 0; k < boundary_reason_count; ++k)
@@ -267,6 +274,13 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
                      {"keep_largest", s.settings.keep_largest ? ordered_json(*s.settings.keep_largest) : ordered_json(nullptr)},
                      {"box_store", s.settings.box_store},
                      {"reuse", s.settings.reuse}};
+    if (const auto& p = s.settings.patches)
+        j["settings"]["patches"] = {{"max_cone", finite(p->max_cone, "settings.patches.max_cone")},
+                                    {"max_extent", finite(p->max_extent, "settings.patches.max_extent")},
+                                    {"max_members", p->max_members},
+                                    {"max_loss", finite(p->max_loss, "settings.patches.max_loss")}};
+    else
+        j["settings"]["patches"] = false;
     if (s.survey) {
         const auto& v = *s.survey;
         j["survey"] = {{"bodies", v.bodies},

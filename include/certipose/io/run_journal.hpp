@@ -26,6 +26,8 @@
 // steps is resumed too (the stores are moved back).
 #pragma once
 
+#include <algorithm>
+
 #include "certipose/error.hpp"
 #include "certipose/io/json.hpp"
 #include "certipose/io/output_files.hpp"
@@ -248,10 +250,13 @@ public:
         throw invalid_argument("store", "part_run_journal: no store named " + name);
     }
 
-    /// A facet finished: its boxes are in the stores. Checkpoints when one is due.
-    void record(const facet_record& r) {
+    /// A facet finished: its boxes are in the stores. Checkpoints when one is due and
+    /// `item_end` (the facet ends its work item: a patch's facets are journaled together, so
+    /// that --resume continues between items and regroups the rest as the run would have).
+    void record(const facet_record& r, bool item_end = true) {
         pending_.push_back(r);
-        if (pending_.size() >= checkpoint_facets || clock::now() - last_checkpoint_ >= checkpoint_interval) checkpoint();
+        if (item_end && (pending_.size() >= checkpoint_facets || clock::now() - last_checkpoint_ >= checkpoint_interval))
+            checkpoint();
     }
 
     /// Makes every facet recorded so far durable: the stores first, then one journal line.
@@ -443,15 +448,20 @@ private:
 };
 
 /// A PartSink that hands each facet to `inner` (which writes the journal's stores) and then
-/// records it in the journal.
+/// records it in the journal. With `ends` (the run's work_plan::ends, in the order of the whole
+/// run) and `done` (the facets earlier invocations finished), it checkpoints only between work
+/// items.
 template <class Inner>
 struct journal_sink {
     Inner* inner;
     part_run_journal* journal;
+    const std::vector<std::size_t>* ends = nullptr;
+    std::size_t done = 0;
     template <class Outcome>
     void facet(const Outcome& o) {
         inner->facet(o);
-        journal->record(o.record);
+        ++done;
+        journal->record(o.record, !ends || std::binary_search(ends->begin(), ends->end(), done));
     }
 };
 

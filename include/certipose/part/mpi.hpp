@@ -6,7 +6,8 @@
 //   certipose::part_solver<> part(mesh, camera, task);               // on every rank
 //   auto r = certipose::solve_part_mpi(part, options, sink, MPI_COMM_WORLD);  // sink used on rank 0
 //
-// The selection is cut into chunks of consecutive facets. Rank 0 hands them out on request
+// The selection is cut into chunks of consecutive work items (facets, or patches of facets:
+// part/patches.hpp), so that a chunk solved on a rank is the same items. Rank 0 hands them out on request
 // (a rank that finishes early asks again: per-facet cost varies 100x, so a static split would
 // leave ranks idle), solves chunks itself on a worker thread, and emits finished chunks in order.
 // It hands out at most `window` chunks beyond the oldest one not yet finished, so the results
@@ -84,6 +85,7 @@ void encode(writer& w, const facet_outcome<I>& o) {
     for (std::size_t k = 0; k < boundary_reason_count; ++k) w.put<std::uint64_t>(r.boundary_reasons[k]);
     w.put<std::uint64_t>(r.dropped);
     w.put<std::uint64_t>(r.reused_from ? *r.reused_from + 1 : 0);  // 0: paved on its own
+    w.put<std::uint64_t>(r.patch ? *r.patch + 1 : 0);              // 0: not a patch's
     w.put<std::uint64_t>(o.boxes.size());
     for (const auto& b : o.boxes) {
         w.put<std::uint8_t>(static_cast<std::uint8_t>(b.cls));
@@ -115,6 +117,7 @@ facet_outcome<I> decode(reader& rd) {
     for (std::size_t k = 0; k < boundary_reason_count; ++k) r.boundary_reasons[k] = rd.get<std::uint64_t>();
     r.dropped = rd.get<std::uint64_t>();
     if (const auto from = rd.get<std::uint64_t>()) r.reused_from = from - 1;
+    if (const auto seed = rd.get<std::uint64_t>()) r.patch = seed - 1;
     const auto boxes = rd.get<std::uint64_t>();
     o.boxes.reserve(boxes);
     const rounding_guard<I> rounding;  // building intervals from exact bounds
@@ -162,16 +165,21 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
     // The selection, the run's budgets, stop and progress, and the order of results: the same
     // scheduler as a oneTBB run's (part/scheduler.hpp), used on rank 0; the others only read
     // the selection to cut chunks.
-    part_schedule schedule(options, part.solver().part().num_faces(), [&](std::size_t f) { return part.work_estimate(f); });
-    const std::vector<std::size_t>& selection = schedule.selection();
+    const auto regions = part.patches(options);
+    part_schedule schedule(options, part.solver().part().num_faces(), [&](std::size_t f) { return part.work_estimate(f); },
+                           regions.get());
+    const work_plan& plan = schedule.plan();
     run_context& run = schedule.context();
+    // Chunks of whole work items: a chunk's facets, grouped again by the rank, are the same items.
+    const std::size_t items = plan.items();
     const std::size_t per_chunk = mpi.chunk ? mpi.chunk
-                                            : std::clamp<std::size_t>(selection.size() / (64 * static_cast<std::size_t>(ranks)), 1, 16);
-    const std::size_t chunks = (selection.size() + per_chunk - 1) / per_chunk;
+                                            : std::clamp<std::size_t>(items / (64 * static_cast<std::size_t>(ranks)), 1, 16);
+    const std::size_t chunks = (items + per_chunk - 1) / per_chunk;
     const auto chunk_options = [&](std::size_t c) {
         part_options o = options;
-        o.facets.assign(selection.begin() + static_cast<std::ptrdiff_t>(c * per_chunk),
-                        selection.begin() + static_cast<std::ptrdiff_t>(std::min(selection.size(), (c + 1) * per_chunk)));
+        const std::size_t last = std::min(items, (c + 1) * per_chunk) - 1;
+        o.facets.assign(plan.order.begin() + static_cast<std::ptrdiff_t>(plan.begin_of(c * per_chunk)),
+                        plan.order.begin() + static_cast<std::ptrdiff_t>(plan.ends[last]));
         o.max_boxes.reset();  // the run's budget is decided on rank 0, in order
         o.time_limit.reset();
         o.progress = {};
@@ -271,7 +279,8 @@ part_result solve_part_mpi(const part_solver<Policies>& part, const part_options
             rd.get<std::uint64_t>();
             const bool complete = rd.get<std::uint8_t>() != 0;
             const auto n = rd.get<std::uint64_t>();
-            for (std::uint64_t i = 0; i < n && !run.stop_requested(); ++i) schedule.emit(sink, pm::decode<I>(rd));
+            // emit hands over nothing once the run stops, but the rest of an item begun
+            for (std::uint64_t i = 0; i < n; ++i) schedule.emit(sink, pm::decode<I>(rd));
             if (!complete) run.stop(termination::cancelled);
             finished.erase(it);
             ++next_emit;

@@ -16,6 +16,7 @@
 #include <tuple>
 #include <vector>
 
+#include "certipose/part/patches.hpp"     // patch_options
 #include "certipose/part/translates.hpp"  // reuse_options
 #include "certipose/solver/camera_regions.hpp"
 #include "certipose/solver/result.hpp"
@@ -48,6 +49,9 @@ struct facet_record {
     /// The translate whose boxes this facet's are, proven again (part_options::reuse); nothing
     /// when the facet was paved on its own.
     std::optional<std::size_t> reused_from{};
+    /// The seed of the patch whose boxes this facet's are (part_options::patches): every box
+    /// is proven for each member of the patch. Nothing when the facet was solved on its own.
+    std::optional<std::size_t> patch{};
     std::array<std::size_t, boundary_reason_count> boundary_reasons{};
 };
 
@@ -97,6 +101,10 @@ struct part_options {
     /// The reuse stage: an open facet takes a translate's boxes, each proven again for it
     /// (part/translates.hpp), instead of being paved (see the header comment).
     reuse_options reuse{};
+    /// Patches: facets certified at once, a box VALID for every member (part/patches.hpp).
+    /// Not with keep_boundary: a patch's BOUNDARY boxes are its seed's, which do not enclose
+    /// what its other members may see.
+    patch_options patches{};
     /// Whole run: boxes processed (sum over facets, in facet order), wall time.
     std::optional<std::size_t> max_boxes{};
     std::optional<std::chrono::steady_clock::duration> time_limit{};
@@ -113,6 +121,7 @@ struct part_result {
     std::size_t facets_selected = 0;
     std::size_t valid = 0, boundary = 0, skipped = 0;
     std::size_t reused = 0;  ///< facets whose boxes are a translate's, proven again (part_options::reuse)
+    std::size_t patched = 0;  ///< facets whose boxes are their patch's (part_options::patches)
     double seconds = 0.0;
     std::size_t threads = 0;
     /// The most facets whose boxes existed at once (solving, or waiting for the sink): what

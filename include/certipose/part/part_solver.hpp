@@ -103,6 +103,31 @@ public:
     template <PartSink<typename Policies::interval> Sink>
     part_result solve(const part_options& options, Sink& sink) const;
 
+    /// The largest diameter of a patch under `options` (metres): its max_extent, or when 0 a
+    /// quarter of the narrower side of the image at d_min.
+    double patch_extent(const patch_options& options) const {
+        if (options.max_extent > 0) return options.max_extent;
+        const fov_half_angles fov = solver_.camera().fov_half_angles();
+        return 0.25 * 2.0 * solver_.range().min * std::tan(std::min(fov.horizontal, fov.vertical));
+    }
+
+    /// The patch regions of the whole part a run with `options` groups its facets by (null: it
+    /// solves facet by facet: patches off, or a run that keeps BOUNDARY boxes, part_run.hpp).
+    /// Regions of the whole part, so that a facet's boxes do not depend on the selection; kept
+    /// for the next run with the same patch options (an MPI rank solves many chunks).
+    std::shared_ptr<const patch_regions> patches(const part_options& options) const {
+        if (!options.patches.enabled || options.keep_boundary) return nullptr;
+        const patch_options& p = options.patches;
+        const std::lock_guard lock(regions_->mutex);
+        auto& c = regions_->last;
+        if (!(c.regions && c.options.max_cone == p.max_cone && c.options.max_extent == p.max_extent &&
+              c.options.max_members == p.max_members && c.options.faces == p.faces)) {
+            c.options = p;
+            c.regions = std::make_shared<const patch_regions>(patch_regions::grow(solver_.part(), p, patch_extent(p)));
+        }
+        return c.regions;
+    }
+
     /// Facet `f` is open (part/translates.hpp): inspectable, and every sight line to it from a
     /// position of its search box in front of it is free — the occlusion policy's `front_clear`
     /// when it has one, else its VISIBLE over the box. The box is returned (nothing otherwise):
@@ -131,6 +156,14 @@ private:
         translate_groups groups;
     };
     std::shared_ptr<lazy_groups> groups_ = std::make_shared<lazy_groups>();
+    struct cached_regions {
+        std::mutex mutex;
+        struct {
+            patch_options options;
+            std::shared_ptr<const patch_regions> regions;
+        } last;
+    };
+    std::shared_ptr<cached_regions> regions_ = std::make_shared<cached_regions>();
 };
 
 template <class Policies>
@@ -215,7 +248,9 @@ part_result part_solver<Policies>::solve(const part_options& options, Sink& sink
     options.facet.validate();
     options.regions.validate();
     options.reuse.validate();
-    part_schedule schedule(options, solver_.part().num_faces(), [&](std::size_t f) { return work_estimate(f); });
+    options.patches.validate(solver_.part().num_faces());
+    const std::shared_ptr<const patch_regions> regions = patches(options);
+    part_schedule schedule(options, solver_.part().num_faces(), [&](std::size_t f) { return work_estimate(f); }, regions.get());
     facet_steps<part_solver> steps(*this, options, schedule);  // screen, reuse, solve, regions, keep largest
     return run_in_order<interval_type>(schedule, options, steps, sink);
 }

@@ -2,12 +2,13 @@
 // alike: the selection, the run's budgets and stop, progress, and the order in which results
 // reach the sink (docs/part.md, "The steps of a part run").
 //
-// A run hands out *work items* (one facet today) in selection order, has them done in parallel
-// (part_solver's facet steps, part/facet_steps.hpp), and takes the results back in the same
-// order: `part_schedule::emit` gives each to the sink, counts it, checks the run's box budget
-// (in order, so the set of items finished does not depend on the threads) and calls the progress
-// callback. `run_in_order` does this with a oneTBB pipeline; solve_part_mpi (part/mpi.hpp)
-// hands chunks to ranks and calls the same `emit` on rank 0.
+// A run hands out *work items* (a facet, or a patch of facets: part/patches.hpp) in order, has
+// them done in parallel (part_solver's facet steps, part/facet_steps.hpp), and takes the results
+// back in the same order: `part_schedule::emit` gives each facet to the sink and counts it; at
+// the end of each item it checks the run's box budget (in order, so the set of items finished
+// does not depend on the threads) and calls the progress callback. An item reaches the sink
+// whole or not at all. `run_in_order` does this with a oneTBB pipeline; solve_part_mpi
+// (part/mpi.hpp) hands chunks of whole items to ranks and calls the same `emit` on rank 0.
 #pragma once
 
 #include <algorithm>
@@ -25,22 +26,25 @@
 
 #include "certipose/error.hpp"
 #include "certipose/part/part_run.hpp"
+#include "certipose/part/patches.hpp"
 #include "certipose/solver/run_context.hpp"
 
 namespace certipose {
 
-/// One unit of work of a part run: one facet today (a patch of facets next). Trivial (no
-/// member initialiser): oneTBB passes small trivial tokens between stages in place.
+/// One unit of work of a part run: item `item` of the run's work_plan (a facet, or a patch of
+/// facets). Trivial (no member initialiser): oneTBB passes small trivial tokens between stages
+/// in place.
 struct work_item {
-    std::size_t facet;
+    std::size_t item;
 };
 
-/// A work item done, as the scheduler carries it back: its outcome, or dropped when the run
-/// ended while it was in flight (never reported half done).
+/// A work item done, as the scheduler carries it back: the outcome of each of its facets, in
+/// the plan's order, or dropped when the run ended while it was in flight (never reported half
+/// done).
 template <Interval I>
 struct work_result {
     bool dropped = false;
-    facet_outcome<I> outcome;
+    std::vector<facet_outcome<I>> outcomes;
 };
 
 namespace detail {
@@ -87,16 +91,18 @@ inline std::vector<std::size_t> selected_facets(const part_options& options, std
 /// what has been handed to the sink. `emit` and `next` are called from one thread at a time.
 class part_schedule {
 public:
-    /// The selection of `options` over a part of `faces` facets (empty: all of them, in order).
+    /// The selection of `options` over a part of `faces` facets (empty: all of them, in order),
+    /// as work items: grouped by `regions` (part/patches.hpp), or a facet each when it is null.
     /// `estimate(f)` weighs facet f for the progress estimate (called only when there is a
     /// progress callback). Throws out_of_range for a facet not in the part and invalid_argument
     /// for a box budget of 0.
     template <class Estimate>
-    part_schedule(const part_options& options, std::size_t faces, Estimate&& estimate)
+    part_schedule(const part_options& options, std::size_t faces, Estimate&& estimate, const patch_regions* regions = nullptr)
         : options_(&options), selection_(selected_facets(options, faces)), context_(options.stop, options.time_limit) {
         if (options.max_boxes && *options.max_boxes == 0)
             throw invalid_argument("max_boxes", "part_solver: the run's max_boxes must be at least 1");
-        if (options.progress) meter_ = detail::work_meter(selection_, std::forward<Estimate>(estimate));
+        plan_ = regions ? work_plan::grouped(selection_, *regions) : work_plan::per_facet(selection_);
+        if (options.progress) meter_ = detail::work_meter(plan_.order, std::forward<Estimate>(estimate));
         result_.facets_selected = selection_.size();
         result_.facets.reserve(selection_.size());
     }
@@ -104,19 +110,21 @@ public:
     part_schedule& operator=(const part_schedule&) = delete;
 
     const std::vector<std::size_t>& selection() const noexcept { return selection_; }
+    /// The work items, and the order in which the selected facets reach the sink.
+    const work_plan& plan() const noexcept { return plan_; }
     /// The run's clock, deadline and stop (the user's token, the budgets, the progress callback).
     run_context& context() noexcept { return context_; }
     const run_context& context() const noexcept { return context_; }
 
-    /// The next work item in selection order; nothing when every one was handed out or the run
-    /// is stopped or past its deadline (which stops it).
+    /// The next work item in order; nothing when every one was handed out or the run is
+    /// stopped or past its deadline (which stops it).
     std::optional<work_item> next() {
-        if (next_ >= selection_.size() || context_.stop_requested()) return std::nullopt;
+        if (next_ >= plan_.items() || context_.stop_requested()) return std::nullopt;
         if (context_.past_deadline()) {
             context_.stop(termination::deadline);
             return std::nullopt;
         }
-        return work_item{selection_[next_++]};
+        return work_item{next_++};
     }
 
     /// `item_options` for one item of this run: the run's stop, its progress off, and its time
@@ -138,20 +146,26 @@ public:
         return stats.reason == termination::cancelled || (stats.reason == termination::deadline && context_.past_deadline());
     }
 
-    /// Hands a finished item to the sink, in selection order (the caller keeps the order),
-    /// counts it, and stops the run when the box budget is spent or the progress callback says
-    /// so. Nothing is handed over once the run is stopped.
+    /// Hands a finished facet to the sink, in the plan's order (the caller keeps the order),
+    /// and counts it; after an item's last facet, stops the run when the box budget is spent
+    /// or the progress callback says so. Nothing more is handed over once the run is stopped,
+    /// except the rest of an item already begun (an item is emitted whole).
     template <class Sink, Interval I>
     void emit(Sink& sink, const facet_outcome<I>& o) {
-        if (context_.stop_requested()) return;
+        const std::size_t done = result_.facets.size();
+        const bool starts_item = done == 0 || plan_.ends[item_] == done;
+        if (starts_item && context_.stop_requested()) return;
+        if (starts_item && done > 0) ++item_;
         const facet_record& rec = o.record;
         sink.facet(o);
         result_.valid += rec.valid;
         result_.boundary += rec.boundary;
         result_.skipped += rec.termination == facet_termination::skipped;
         result_.reused += rec.reused_from.has_value();
+        result_.patched += rec.patch.has_value();
         result_.facets.push_back(rec);
         boxes_ += rec.valid + rec.boundary;
+        if (result_.facets.size() != plan_.ends[item_]) return;  // the item goes on
         if (options_->max_boxes && boxes_ >= *options_->max_boxes && result_.facets.size() < selection_.size())
             context_.stop(termination::box_budget);
         if (options_->progress) {
@@ -175,9 +189,10 @@ public:
 private:
     const part_options* options_;
     std::vector<std::size_t> selection_;
+    work_plan plan_;
     run_context context_;
     detail::work_meter meter_{};
-    std::size_t next_ = 0, boxes_ = 0;
+    std::size_t next_ = 0, boxes_ = 0, item_ = 0;
     part_result result_{};
 };
 
@@ -195,6 +210,7 @@ part_result run_in_order(part_schedule& schedule, const part_options& options, W
     const std::size_t threads = part_threads(options);
     const std::size_t tokens = options.in_flight ? options.in_flight : 4 * threads;
     std::atomic<std::size_t> live{0}, peak{0};
+    bool gap = false;  // an item was dropped: none after it reaches the sink
     // The serial stages never run at once and TBB orders every hand-over between stages, but
     // with synchronisation ThreadSanitizer cannot see (libtbb is not instrumented), so it would
     // flag the sink, the totals and each item as races. Every stage passes through this mutex
@@ -237,8 +253,9 @@ part_result run_in_order(part_schedule& schedule, const part_options& options, W
                                                                    const sync_on_exit done{sync};
                                                                    --live;
                                                                    // In order: nothing after a dropped item.
-                                                                   if (r.dropped) return;
-                                                                   schedule.emit(sink, std::as_const(r.outcome));
+                                                                   gap = gap || r.dropped;
+                                                                   if (gap) return;
+                                                                   for (const auto& o : r.outcomes) schedule.emit(sink, o);
                                                                }));
     });
     sync();  // what the last serial stage wrote, seen in this thread
