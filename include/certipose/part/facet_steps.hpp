@@ -45,6 +45,24 @@
 
 namespace certipose {
 
+namespace detail {
+
+/// solve_stats::valid_volume of `boxes`: the volume of the distinct position boxes of the
+/// VALID ones (a position box with several orientation boxes counts once).
+template <Interval I>
+double valid_position_volume(const std::vector<classified_box<I>>& boxes) {
+    std::set<std::array<double, 6>> seen;
+    double v = 0.0;
+    for (const auto& b : boxes) {
+        const auto& p = b.box.position;
+        if (b.cls == box_class::valid && seen.insert({lower(p[0]), upper(p[0]), lower(p[1]), upper(p[1]), lower(p[2]), upper(p[2])}).second)
+            v += volume(p);
+    }
+    return v;
+}
+
+}  // namespace detail
+
 /// Skips a facet that provably no pose can inspect (part_solver::uninspectable), with the reason.
 struct screen_step {
     bool skip_uninspectable = true;
@@ -132,9 +150,7 @@ struct patch_step {
                     const std::size_t k = widest_dimension(b.position);
                     std::tie(lo.position, hi.position) = bisect_at(b.position, k, mid(b.position[k]));
                 } else {
-                    std::size_t k = 0;
-                    for (std::size_t d = 1; d < 3; ++d)
-                        if (width(b.orientation[d]) > width(b.orientation[k])) k = d;
+                    const std::size_t k = widest_dimension(b.orientation);
                     std::tie(lo.orientation, hi.orientation) = bisect_at(b.orientation, k, mid(b.orientation[k]));
                 }
                 self(self, lo, depth + 1);
@@ -160,13 +176,7 @@ struct patch_step {
         std::erase_if(r.boxes, [](const classified_box<I>& b) { return b.cls == box_class::valid; });
         for (auto& b : live) r.boxes.push_back(classified_box<I>{box_class::valid, std::move(b)});
         r.stats.valid = live.size();
-        r.stats.valid_volume = 0.0;
-        std::set<std::array<double, 6>> seen;
-        for (const auto& b : r.boxes) {
-            const auto& p = b.box.position;
-            if (b.cls == box_class::valid && seen.insert({lower(p[0]), upper(p[0]), lower(p[1]), upper(p[1]), lower(p[2]), upper(p[2])}).second)
-                r.stats.valid_volume += volume(p);
-        }
+        r.stats.valid_volume = detail::valid_position_volume(r.boxes);
         return out;
     }
 };
@@ -247,16 +257,8 @@ public:
         r.stats.boundary += moved->unproven;
         for (std::size_t k = 0; k < boundary_reason_count; ++k) r.stats.boundary_reasons[k] += moved->unproven_reasons[k];
         r.boxes = std::move(moved->boxes);
-        if (moved->unproven > 0) {  // the positions the unproven boxes held alone are no longer certified
-            std::set<std::array<double, 6>> seen;
-            r.stats.valid_volume = 0;
-            for (const auto& b : r.boxes) {
-                const auto& p = b.box.position;
-                if (b.cls == box_class::valid &&
-                    seen.insert({lower(p[0]), upper(p[0]), lower(p[1]), upper(p[1]), lower(p[2]), upper(p[2])}).second)
-                    r.stats.valid_volume += volume(p);
-            }
-        }
+        if (moved->unproven > 0)  // the positions the unproven boxes held alone are no longer certified
+            r.stats.valid_volume = detail::valid_position_volume(r.boxes);
         r.stats.seconds = std::chrono::duration<double>(clock::now() - t0).count();
         from = t;
         return r;
