@@ -1,10 +1,12 @@
 // certipose-export — a plan (PLAN.json of certipose-plan) in the formats a fitter, a robot cell,
-// a CAD tool and a person open: a CSV of nominal poses and certified tolerances, ROS/MoveIt
-// constraints, a URDF snippet, a glTF 2.0 scene and a self-contained HTML viewer.
+// a CAD tool and a person open: a fitter's CSV of nominal poses and certified tolerances (mm,
+// degrees), ROS/MoveIt constraints, a URDF (a whole <robot>, or with --snippet the cameras' links
+// to paste into one), a glTF 2.0 scene with a camera object per camera and a self-contained HTML
+// viewer.
 //
 //   certipose-export PLAN.json --format csv|moveit|urdf|glb|html --out FILE
 //                    [--mesh PART [--scale S]] [--parent-frame NAME] [--link optical|mount]
-//                    [--title TEXT] [--quiet]
+//                    [--link-prefix PREFIX] [--robot-name NAME] [--snippet] [--title TEXT] [--quiet]
 //
 // glb and html draw the part, so they need --mesh (the plan's part; --scale defaults to the
 // scale the plan recorded, and the face count must match). The output is written atomically and
@@ -45,20 +47,21 @@ using namespace certipose_program;
 struct export_program {
     static constexpr const char* name = "certipose-export";
     static constexpr const char* description =
-        "certipose-export: a plan's cameras as CSV, ROS/MoveIt constraints, URDF, glTF (.glb) or a self-contained HTML "
-        "viewer (docs/conventions.md#exports).";
+        "certipose-export: a plan's cameras as a fitter's CSV (mm, degrees), ROS/MoveIt constraints, a URDF, glTF "
+        "(.glb, with camera objects) or a self-contained HTML viewer (docs/conventions.md#exports).";
 
     struct options {
         std::string plan, format, out, mesh, scale;
-        std::optional<std::string> parent_frame, link, title;  ///< unset: not given (given empty is a mistake too)
-        bool quiet = false;
+        std::optional<std::string> parent_frame, link, link_prefix, robot_name, title;  ///< unset: not given (given empty is a mistake too)
+        bool snippet = false, quiet = false;
     };
 
     struct arguments {
         fs::path plan, mesh, out;
-        std::string format, parent_frame = "world", link = "optical", title;
+        std::string format, parent_frame = "world", link = "optical", link_prefix = "camera_",
+                    robot_name = "certipose_cameras", title;
         std::optional<double> scale;
-        bool quiet = false;
+        bool snippet = false, quiet = false;
 
         std::vector<certipose::named_path> files_read() const {
             std::vector<certipose::named_path> in{{"PLAN.json", plan}};
@@ -83,6 +86,13 @@ struct export_program {
                        "moveit: constrain each camera's optical frame (default) or its mount (with the camera's "
                        "mount_offset)")
             ->type_name("optical|mount");
+        app.add_option("--link-prefix", text.link_prefix,
+                       "urdf and moveit: camera k's links are PREFIXk_mount and PREFIXk_optical_frame (default camera_)")
+            ->type_name("PREFIX");
+        app.add_option("--robot-name", text.robot_name, "urdf: the <robot> name (default certipose_cameras)")
+            ->type_name("NAME");
+        app.add_flag("--snippet", text.snippet,
+                     "urdf: only the cameras' links and joints, to paste inside a <robot> that has --parent-frame");
         app.add_option("--title", text.title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
         app.add_flag("--quiet,-q", text.quiet, "print nothing but errors");
     }
@@ -100,11 +110,18 @@ struct export_program {
         only_for("--parent-frame", text.parent_frame.has_value(), a.format == "urdf" || a.format == "moveit",
                  "--format urdf and moveit");
         only_for("--link", text.link.has_value(), a.format == "moveit", "--format moveit");
+        only_for("--link-prefix", text.link_prefix.has_value(), a.format == "urdf" || a.format == "moveit",
+                 "--format urdf and moveit");
+        only_for("--robot-name", text.robot_name.has_value(), a.format == "urdf", "--format urdf");
+        only_for("--snippet", text.snippet, a.format == "urdf", "--format urdf");
         only_for("--title", text.title.has_value(), a.format == "html", "--format html");
         only_for("--mesh", !text.mesh.empty(), picture, "--format glb and html");
         only_for("--scale", !text.scale.empty(), picture, "--format glb and html");
         if (text.parent_frame) a.parent_frame = *text.parent_frame;
         if (text.link) a.link = *text.link;
+        if (text.link_prefix) a.link_prefix = *text.link_prefix;
+        if (text.robot_name) a.robot_name = *text.robot_name;
+        a.snippet = text.snippet;
         if (text.title) a.title = *text.title;
         if (a.link != "optical" && a.link != "mount")
             throw usage_error("--link: expected optical or mount, got '" + a.link + "'");
@@ -128,11 +145,16 @@ using arguments = export_program::arguments;
 
 std::string content(const arguments& args, const certipose::plan_document& plan) {
     if (args.format == "csv") return certipose::plan_csv(plan);
-    if (args.format == "urdf") return certipose::plan_urdf(plan, args.parent_frame);
+    if (args.format == "urdf")
+        return certipose::plan_urdf(plan, {.parent_frame = args.parent_frame,
+                                           .link_prefix = args.link_prefix,
+                                           .robot_name = args.robot_name,
+                                           .snippet = args.snippet});
     if (args.format == "moveit")
         return certipose::plan_moveit_yaml(
             plan, {.frame_id = args.parent_frame,
-                   .link = args.link == "mount" ? certipose::constrained_link::mount : certipose::constrained_link::optical_frame});
+                   .link = args.link == "mount" ? certipose::constrained_link::mount : certipose::constrained_link::optical_frame,
+                   .link_prefix = args.link_prefix});
     const double scale = args.scale.value_or(plan.mesh.scale);
     const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = scale});
     // The plan's facet indices mean something only on its own part.

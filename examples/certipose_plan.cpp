@@ -22,7 +22,8 @@
 // --lp-seconds, default 60). Facets no chosen camera certifies are listed with
 // the reason. PLAN.json and the PLY are committed together; SIGINT/SIGTERM stop the run, leave no
 // file and exit 130/143. Errors: one line "certipose-plan: ..." on stderr, exit 1 (bad input,
-// write error) or 2 (bad command line).
+// write error, or a plan with no camera: written, with each facet's reason) or 2 (bad command
+// line).
 #include "program_skeleton.hpp"
 #include "program_scene.hpp"
 
@@ -51,6 +52,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -297,6 +299,26 @@ int plan_program::run(const arguments& args, const interruption& signals) {
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
                     made.inspected, made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());
         std::printf("wrote %s%s%s\n", args.out.string().c_str(), args.ply.empty() ? "" : " and ", args.ply.string().c_str());
+    }
+    // A plan with no camera is a task that failed, not a result to pass on in silence: the plan is
+    // written (it lists each facet's reason), the exit code says so, and the message says why.
+    if (doc.cameras.empty()) {
+        std::map<std::string, std::size_t> reasons;
+        for (const auto& u : doc.uncovered) ++reasons[certipose::to_string(u.reason)];
+        std::string why;
+        for (const auto& [reason, n] : reasons) why += (why.empty() ? "" : ", ") + std::to_string(n) + " " + reason;
+        // Every facet solved was proven unseen (the rest were not asked for): the camera cannot
+        // see this part at all, most often because of its units.
+        const auto reason = [&](certipose::uncovered_reason r) { return reasons.count(certipose::to_string(r)); };
+        const bool unseen = reason(certipose::uncovered_reason::never_visible) &&
+                            reasons.size() == 1 + reason(certipose::uncovered_reason::not_solved);
+        std::fprintf(stderr, "certipose-plan: no camera certifies any facet of %s (%s)%s; %s lists each facet's reason\n",
+                     args.inputs.mesh.string().c_str(), why.empty() ? "no facets" : why.c_str(),
+                     unseen ? ": no pose of the camera sees them; check the mesh's units (--scale) against the camera's "
+                              "working distance"
+                            : "",
+                     args.out.string().c_str());
+        return exit_failure;
     }
     return exit_ok;
 }

@@ -810,7 +810,7 @@ plan_holder make_plan_py(const solver& s, py::object source, std::size_t per_fac
 py::bytes export_plan(const cp::plan_document& plan, const std::string& format, std::shared_ptr<cp::triangle_mesh> mesh,
                       const std::string& parent_frame, const std::string& link, const std::string& title) {
     if (format == "csv") return cp::plan_csv(plan);
-    if (format == "urdf") return cp::plan_urdf(plan, parent_frame);
+    if (format == "urdf") return cp::plan_urdf(plan, {.parent_frame = parent_frame});
     if (format == "moveit") {
         if (link != "optical" && link != "mount")
             throw cp::invalid_argument("link", "link must be \"optical\" or \"mount\", got \"" + link + "\"");

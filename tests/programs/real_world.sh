@@ -209,6 +209,16 @@ grep -q "certipose-solve: warning: the part is .* m across after --scale 1000, .
     fail "certipose-part on the mesh x0.001 failed: $(cat err)"
 grep -q "certipose-part: warning: the part is .* m across after --scale 0.001, fewer than 4 pixels.*Drop --scale" err ||
     fail "no unit warning for a part x0.001: $(cat err)"
+# A plan that certifies nothing (the part x1000: nothing is in focus) is written, with each facet's
+# reason, but exits 1 and says why, naming the likely cause: not "0.0 %" and exit 0.
+if [ -n "$plan" ]; then
+    "$plan" --mesh "$mesh" --scale 1000 --camera "$camera" "${eps[@]}" --facets 0-3 --out empty.json >out 2>err
+    rc=$?
+    [ $rc -eq 1 ] || fail "a plan with no camera: expected exit 1, got $rc: $(cat err)"
+    grep -q "certipose-plan: no camera certifies any facet of .*(4 never visible, 2296 not solved): .*--scale" err ||
+        fail "a plan with no camera does not say why: $(cat err)"
+    [ -s empty.json ] || fail "the empty plan (with its reasons) was not written"
+fi
 "$solve" --mesh "$mesh" --camera "$camera" "${eps[@]}" --facet "$facet" --out true.json >out 2>err ||
     fail "certipose-solve at true size failed: $(cat err)"
 grep -q "warning: the part is" err && fail "a unit warning at the part's true size: $(cat err)"

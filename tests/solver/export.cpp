@@ -16,6 +16,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <map>
+#include <random>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -58,7 +60,12 @@ struct case_study_plan {
             const facet_coverage cov = inspector.inspect(b);
             c.facets = cov.certified;
             c.certified_area = cov.certified_area;
+            for (std::size_t i = 0; i < 3; ++i) {
+                c.nominal[i] = (c.position[i][0] + c.position[i][1]) / 2;
+                c.nominal[i + 3] = (c.orientation[i][0] + c.orientation[i][1]) / 2;
+            }
             c.from_facet = facet;
+            c.aim = plan_aim(part().mesh, c);
             plan.cameras.push_back(c);
         }
     }
@@ -132,40 +139,121 @@ TEST_CASE("export: the MoveIt constraints read back from the YAML are certified 
     CHECK(reproven > f.plan.cameras.size());  // cameras certify more than the case study's facet
 }
 
-TEST_CASE("export: the CSV rows are the nominal poses and tolerances of the plan's cameras") {
+TEST_CASE("export: the fitter's CSV, read back, stays inside each camera's box from its rounded nominal") {
     const auto& f = fixture();
     const std::string csv = plan_csv(f.plan);
     std::istringstream in(csv);
     std::string line;
     REQUIRE(std::getline(in, line));
-    CHECK(line.rfind("camera,x,y,z,qx,qy,qz,qw,m00,", 0) == 0);
-    std::vector<std::string> header;
-    for (std::istringstream h(line); std::getline(h, line, ',');) header.push_back(line);
-    CHECK(header.size() == 34);
+    std::map<std::string, std::size_t> col;
+    for (std::istringstream h(line); std::getline(h, line, ',');) {
+        // Every number a fitter reads names its unit; the unitless ones are the quaternion, the
+        // rotation matrix and the counts.
+        const bool unitless = line == "camera" || line == "facets" || line.size() == 2 || line.size() == 3;
+        CHECK_MESSAGE((unitless || line.ends_with("_mm") || line.ends_with("_deg") || line.ends_with("_mm2")), line);
+        col[line] = col.size();
+    }
+    for (const char* c : {"x_mm", "qw", "r22", "half_z_mm", "axis_cone_half_angle_deg", "roll_half_range_deg", "aim_x_mm",
+                          "aim_distance_mm", "certified_area_mm2"})
+        REQUIRE_MESSAGE(col.count(c) == 1, c);
     const auto exports = camera_exports(f.plan);
-    std::size_t rows = 0;
+    constexpr double deg = 180 / std::numbers::pi;
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::size_t rows = 0, sampled = 0;
     while (std::getline(in, line)) {
-        std::vector<double> v;
-        for (std::istringstream r(line); std::getline(r, line, ',');) v.push_back(std::stod(line));
-        REQUIRE(v.size() == header.size());
+        std::vector<std::string> cells;
+        for (std::istringstream r(line); std::getline(r, line, ',');) cells.push_back(line);
+        REQUIRE(cells.size() == col.size());
+        const auto v = [&](const char* name) { return std::stod(cells[col.at(name)]); };
         const auto& e = exports[rows];
         const auto& box = f.plan.cameras[rows];
+        // Rounded as a fitter reads it: 0.1 mm and 0.01°, never more digits.
+        CHECK(cells[col.at("x_mm")].find('.') == cells[col.at("x_mm")].size() - 2);
+        CHECK(cells[col.at("axis_cone_half_angle_deg")].find('.') == cells[col.at("axis_cone_half_angle_deg")].size() - 3);
+        const char* xyz[3] = {"x_mm", "y_mm", "z_mm"};
+        const char* half[3] = {"half_x_mm", "half_y_mm", "half_z_mm"};
         for (std::size_t i = 0; i < 3; ++i) {
-            CHECK(v[1 + i] == e.position[i]);
-            CHECK(v[1 + i] - v[24 + i] >= box.position[i][0]);  // the half-widths stay in the box
-            CHECK(v[1 + i] + v[24 + i] <= box.position[i][1]);
-            CHECK(v[8 + 4 * i + 3] == e.position[i]);  // the 4×4's translation column
+            CHECK(std::abs(v(xyz[i]) - 1000 * e.position[i]) <= 0.05 + 1e-9);
+            // The printed tolerance about the printed nominal is inside the box...
+            CHECK((v(xyz[i]) - v(half[i])) / 1000 >= box.position[i][0]);
+            CHECK((v(xyz[i]) + v(half[i])) / 1000 <= box.position[i][1]);
+            // ...and gives up no more than the rounding needs.
+            CHECK(v(half[i]) >= 1000 * e.position_half[i] - 0.15 - 1e-9);
+            CHECK(v(half[i]) > 0);
         }
-        const Eigen::Matrix3d r = matrix_from_quaternion({v[4], v[5], v[6], v[7]});
+        const Eigen::Matrix3d r = matrix_from_quaternion({v("qx"), v("qy"), v("qz"), v("qw")});
         for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) CHECK(std::abs(r(i, j) - v[8 + 4 * i + j]) < 1e-12);
-        CHECK(v[27] == e.axis.cone);
-        CHECK(v[28] == e.axis.roll);
-        CHECK(v[27] > 0);  // a VALID box of the case study certifies a real tilt and roll
-        CHECK(v[28] > 0);
+            for (int j = 0; j < 3; ++j) {
+                const std::string name = "r" + std::to_string(i) + std::to_string(j);
+                CHECK(std::abs(r(i, j) - v(name.c_str())) < 1e-8);
+            }
+        const double cone = v("axis_cone_half_angle_deg") / deg, roll = v("roll_half_range_deg") / deg;
+        CHECK(cone > 0);  // a VALID box of the case study certifies a real tilt and roll
+        CHECK(roll > 0);
+        CHECK(cone <= e.axis.cone);
+        CHECK(roll <= e.axis.roll);
+        // Orientations within the printed cone and roll of the printed quaternion lie in the box
+        // (the extremes first, then random ones), read back as ZXZ angles modulo 2π.
+        const auto c = zxz_centre(box.orientation);
+        for (int k = 0; k < 64; ++k, ++sampled) {
+            const double dir = 2 * std::numbers::pi * u(rng);
+            const double swing = k < 8 ? cone : cone * std::sqrt(u(rng));
+            const double twist = k < 8 ? (k % 2 ? roll : -roll) : roll * (2 * u(rng) - 1);
+            const Eigen::Matrix3d rk = r * Eigen::AngleAxisd(swing, Eigen::Vector3d(std::cos(dir), std::sin(dir), 0)) *
+                                       Eigen::AngleAxisd(twist, Eigen::Vector3d::UnitZ());
+            const zxz_angles a = zxz_from_matrix(rk);
+            const double got[3] = {a.phi, a.gamma, a.beta};
+            for (std::size_t i = 0; i < 3; ++i) {
+                const double d = i == 1 ? got[i] - c[i] : std::remainder(got[i] - c[i], 2 * std::numbers::pi);
+                CHECK_MESSAGE(d >= box.orientation[i][0] - c[i] - 1e-12, "camera ", rows, " angle ", i, " k ", k);
+                CHECK_MESSAGE(d <= box.orientation[i][1] - c[i] + 1e-12, "camera ", rows, " angle ", i, " k ", k);
+            }
+        }
+        // The aim point is on the nominal optical axis, in front of the camera, on the part.
+        REQUIRE(box.aim);
+        const Eigen::Vector3d p(e.position[0], e.position[1], e.position[2]);
+        const Eigen::Vector3d aim(v("aim_x_mm") / 1000, v("aim_y_mm") / 1000, v("aim_z_mm") / 1000);
+        const Eigen::Vector3d axis = e.rotation.col(2);
+        CHECK((aim - p).dot(axis) > f.plan.camera.d_min / 2);
+        CHECK((aim - p).cross(axis).norm() < 2e-4);  // the 0.1 mm rounding of both points
+        CHECK(std::abs(v("aim_distance_mm") - 1000 * (aim - p).norm()) < 0.2);
+        CHECK(v("facets") == static_cast<double>(box.facets.size()));
+        CHECK(std::abs(v("certified_area_mm2") - 1e6 * box.certified_area) <= 0.05 + 1e-9);
         ++rows;
     }
     CHECK(rows == f.plan.cameras.size());
+    CHECK(sampled == 64 * rows);
+    // A plan written before aim points were recorded leaves those cells empty, not made up.
+    plan_document old = f.plan;
+    for (auto& cam : old.cameras) cam.aim.reset();
+    const std::string old_csv = plan_csv(old);
+    CHECK(old_csv.find(",,,,") != std::string::npos);
+}
+
+TEST_CASE("export: the URDF is a whole robot rooted at the parent frame, or with snippet only the cameras") {
+    const auto& f = fixture();
+    const std::size_t n = f.plan.cameras.size();
+    const auto count = [](const std::string& s, const std::string& what) {
+        std::size_t k = 0;
+        for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++k;
+        return k;
+    };
+    const std::string whole = plan_urdf(f.plan, {.parent_frame = "base_link", .link_prefix = "cell1_cam", .robot_name = "cell1"});
+    CHECK(whole.rfind("<?xml", 0) == 0);
+    CHECK(count(whole, "<robot name=\"cell1\">") == 1);
+    CHECK(count(whole, "</robot>") == 1);
+    CHECK(count(whole, "<link name=\"base_link\"/>") == 1);  // the root link is declared
+    CHECK(count(whole, "<link name=") == 1 + 2 * n);
+    CHECK(count(whole, "<parent link=\"base_link\"/>") == n);
+    CHECK(count(whole, "<child link=\"cell1_cam0_optical_frame\"/>") == 1);
+    const std::string snippet = plan_urdf(f.plan, {.snippet = true});
+    CHECK(count(snippet, "<robot name") == 0);
+    CHECK(count(snippet, "<link name=\"world\"/>") == 0);  // the robot it is pasted into has it
+    CHECK(count(snippet, "<parent link=\"world\"/>") == n);
+    CHECK(count(snippet, "<link name=\"camera_0_mount\"/>") == 1);
+    CHECK_THROWS_AS(plan_urdf(f.plan, {.robot_name = "two words"}), invalid_argument);
+    CHECK_THROWS_AS(plan_urdf(f.plan, {.link_prefix = "cam<"}), invalid_argument);
 }
 
 TEST_CASE("export: the glTF scene holds the part facet by facet and each camera's frustum and box") {
@@ -182,6 +270,27 @@ TEST_CASE("export: the glTF scene holds the part facet by facet and each camera'
     CHECK(std::count(names.begin(), names.end(), "part") == 1);
     CHECK(std::count(names.begin(), names.end(), "camera 0 frustum") == 1);
     CHECK(std::count(names.begin(), names.end(), "camera " + std::to_string(f.plan.cameras.size() - 1) + " tolerance") == 1);
+    // A glTF camera object per plan camera at its nominal pose, looking down the optical axis
+    // (glTF cameras look down their −z), with the image's vertical field of view.
+    REQUIRE(model.cameras.size() == f.plan.cameras.size());
+    const auto exports = camera_exports(f.plan);
+    for (const auto& e : exports) {
+        const auto node = std::find_if(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& n) {
+            return n.name == "camera " + std::to_string(e.index) + " view";
+        });
+        REQUIRE(node != model.nodes.end());
+        REQUIRE(node->camera >= 0);
+        const auto& cam = model.cameras[static_cast<std::size_t>(node->camera)];
+        CHECK(cam.type == "perspective");
+        CHECK(cam.perspective.yfov == doctest::Approx(2 * std::atan(1024 / 3478.26)));
+        CHECK(cam.perspective.znear > 0);
+        REQUIRE(node->translation.size() == 3);
+        REQUIRE(node->rotation.size() == 4);
+        for (std::size_t i = 0; i < 3; ++i) CHECK(node->translation[i] == e.position[i]);
+        const Eigen::Quaterniond q(node->rotation[3], node->rotation[0], node->rotation[1], node->rotation[2]);
+        CHECK((q * -Eigen::Vector3d::UnitZ() - e.rotation.col(2)).norm() < 1e-12);  // looks along the axis
+        CHECK((q * Eigen::Vector3d::UnitY() + e.rotation.col(1)).norm() < 1e-12);   // up is the image's −v
+    }
     const auto& prim = model.meshes[0].primitives[0];
     CHECK(model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count == 3 * part().mesh.num_faces());
     // A plan facet beyond the part is refused, naming it.

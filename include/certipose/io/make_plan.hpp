@@ -21,6 +21,7 @@
 #include "certipose/coverage/inspect_boxes.hpp"
 #include "certipose/coverage/thinning.hpp"
 #include "certipose/io/box_store.hpp"
+#include "certipose/io/plan_export.hpp"
 #include "certipose/io/plan_files.hpp"
 #include "certipose/part/part_solver.hpp"
 
@@ -33,6 +34,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <stop_token>
 #include <string>
@@ -361,6 +363,7 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
         cam.facets = sets[j].facets;
         for (std::size_t f : cam.facets) cam.certified_area += areas[f];
         cam.from_facet = candidates[j].facet;
+        cam.aim = plan_aim(solver.part(), cam);
         doc.cameras.push_back(std::move(cam));
     }
     doc.coverage = {plan.certified_area, plan.coverable_area, plan.total_area, plan.lower_bound, method, plan.curve};
@@ -377,7 +380,9 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
         if (plan.covered_by[f] != deployment_plan::npos) continue;
         uncovered_reason why = uncovered_reason::not_solved;
         if (coverable[f]) why = uncovered_reason::not_selected;
-        else if (const auto* r = record_of[f]; r && r->termination != facet_termination::skipped) {
+        else if (const auto* r = record_of[f]; r && r->termination == facet_termination::skipped)
+            why = uncovered_reason::never_visible;  // the run's screen proved that no pose inspects it
+        else if (r) {
             if (r->valid > 0) why = uncovered_reason::not_selected;  // VALID boxes, none a candidate that proves it
             else if (r->boundary > 0) why = uncovered_reason::boundary_only;
             else if (r->termination != facet_termination::completed) why = uncovered_reason::not_finished;

@@ -1,7 +1,7 @@
 // certipose/io/plan_export.hpp — a plan's cameras in the terms a fitter, a robot cell and a CAD
 // tool use: a nominal pose (position + quaternion, 4×4 transform, URDF roll-pitch-yaw) and a
 // tolerance that the certified box contains (position half-widths, the optical-axis cone and the
-// roll about the axis). Writes the CSV and the URDF snippet of certipose-export; the MoveIt
+// roll about the axis). Writes the fitter's CSV and the URDF of certipose-export; the MoveIt
 // YAML, glTF and HTML writers build on `camera_exports` (io/moveit_yaml.hpp, io/plan_gltf.hpp,
 // io/plan_html.hpp). Formats: docs/conventions.md#exports.
 //
@@ -10,6 +10,7 @@
 // written because they are not a fitter's numbers (docs/conventions.md#zxz-angles).
 #pragma once
 
+#include "certipose/geometry/triangle_mesh.hpp"
 #include "certipose/io/plan_files.hpp"
 #include "certipose/pose/axis_tolerance.hpp"
 #include "certipose/pose/rotation.hpp"
@@ -23,6 +24,8 @@
 #include <cstddef>
 #include <cstdio>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,6 +87,43 @@ inline std::vector<camera_export> camera_exports(const plan_document& plan) {
     return out;
 }
 
+/// The point a fitter aims camera `cam` at: where its nominal optical axis (from the position
+/// box's centre along R(φ, γ, β)·z of the orientation box's centre) first meets the part; when the
+/// axis misses every facet (it passes through a hole or beside an edge), the point of the axis
+/// nearest the area-weighted centroid of the camera's facets. It is a number to install by, not a
+/// certificate: plain double arithmetic, and only the part's facets (not the scene's occluders).
+inline std::array<double, 3> plan_aim(const triangle_mesh& mesh, const plan_document::camera_box& cam) {
+    const certipose::detail::round_to_nearest_scope nearest;
+    const Eigen::Vector3d p(cam.nominal[0], cam.nominal[1], cam.nominal[2]);
+    const Eigen::Vector3d axis = zxz_rotation(cam.nominal[3], cam.nominal[4], cam.nominal[5]) * Eigen::Vector3d::UnitZ();
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f) {  // Möller–Trumbore, front and back faces
+        const auto& v = mesh.facet(f).v;
+        const Eigen::Vector3d e1 = v[1] - v[0], e2 = v[2] - v[0], q = axis.cross(e2);
+        const double det = e1.dot(q);
+        if (std::abs(det) < 1e-300) continue;
+        const Eigen::Vector3d s = p - v[0];
+        const double u = s.dot(q) / det;
+        if (u < 0 || u > 1) continue;
+        const Eigen::Vector3d r = s.cross(e1);
+        const double w = axis.dot(r) / det;
+        if (w < 0 || u + w > 1) continue;
+        if (const double t = e2.dot(r) / det; t > 0 && t < best) best = t;
+    }
+    if (!std::isfinite(best)) {
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        double area = 0;
+        for (std::size_t f : cam.facets) {
+            const auto& v = mesh.facet(f).v;
+            const double a = (v[1] - v[0]).cross(v[2] - v[0]).norm() / 2;
+            centroid += a * (v[0] + v[1] + v[2]) / 3, area += a;
+        }
+        best = area > 0 ? std::max(0.0, (centroid / area - p).dot(axis)) : 0.0;
+    }
+    const Eigen::Vector3d aim = p + best * axis;
+    return {aim[0], aim[1], aim[2]};
+}
+
 /// URDF's fixed-axis roll-pitch-yaw of a rotation: R = Rz(yaw)·Ry(pitch)·Rx(roll).
 inline std::array<double, 3> urdf_rpy(const Eigen::Matrix3d& r) {
     // Pitch and yaw from the first column (its horizontal part gives cos(pitch) accurately up to
@@ -98,27 +138,86 @@ inline std::array<double, 3> urdf_rpy(const Eigen::Matrix3d& r) {
     return {std::atan2(rest(2, 1), rest(1, 1)), pitch, yaw};
 }
 
-/// The CSV of certipose-export: a header row, then one row per camera (docs/conventions.md#csv).
+/// A camera in a fitter's units: millimetres to 0.1 mm, degrees to 0.01°. The nominal position is
+/// rounded to the nearest step; each tolerance is rounded *down* after giving up what that rounding
+/// moved the nominal (0.05 mm; the quaternion's 9 decimals move the orientation by ~1e-9 rad,
+/// well inside the 1e-5° given up on each angle), so that a fitter who keeps within the printed
+/// tolerance of the printed nominal stays inside the certified box.
+struct fitter_camera {
+    std::array<double, 3> position_mm{}, half_mm{}, mount_mm{};
+    double axis_cone_deg = 0, roll_deg = 0;
+    std::optional<std::array<double, 3>> aim_mm;  ///< the plan's aim point, when it has one
+    double aim_distance_mm = 0;                   ///< from the projection centre to the aim point
+};
+
+namespace detail::plan_export {
+inline double to_step(double v, double step) {
+    const double r = std::round(v / step) * step;
+    return r == 0 ? 0.0 : r;  // never "-0.0"
+}
+inline double inward(double v, double step, double margin) { return std::max(0.0, std::floor((v - margin) / step) * step); }
+inline std::string fixed(double v, int decimals) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v == 0 ? 0.0 : v);
+    return buf;
+}
+}  // namespace detail::plan_export
+
+inline fitter_camera fitter_units(const camera_export& e, const plan_document::camera_box& box) {
+    using namespace detail::plan_export;
+    const certipose::detail::round_to_nearest_scope nearest;
+    constexpr double deg = 180 / std::numbers::pi;
+    fitter_camera f;
+    for (std::size_t i = 0; i < 3; ++i) {
+        f.position_mm[i] = to_step(1000 * e.position[i], 0.1);
+        f.half_mm[i] = inward(1000 * e.position_half[i], 0.1, 0.05 + 1e-6);
+        f.mount_mm[i] = to_step(1000 * e.mount_position[i], 0.1);
+    }
+    f.axis_cone_deg = inward(deg * e.axis.cone, 0.01, 1e-5);
+    f.roll_deg = inward(deg * e.axis.roll, 0.01, 1e-5);
+    if (box.aim) {
+        std::array<double, 3> aim{};
+        double d2 = 0;
+        for (std::size_t i = 0; i < 3; ++i) {
+            aim[i] = to_step(1000 * (*box.aim)[i], 0.1);
+            d2 += std::pow(1000 * ((*box.aim)[i] - e.position[i]), 2);
+        }
+        f.aim_mm = aim;
+        f.aim_distance_mm = to_step(std::sqrt(d2), 0.1);
+    }
+    return f;
+}
+
+/// The fitter's CSV of certipose-export: a header row whose every column names its unit, then one
+/// row per camera (docs/conventions.md#csv). The robot cell's full-precision numbers, in metres
+/// and radians, are in the URDF and MoveIt exports.
 inline std::string plan_csv(const plan_document& plan) {
-    using detail::plan_export::number;
-    std::string s = "camera,x,y,z,qx,qy,qz,qw";
-    for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) s += ",m" + std::to_string(r) + std::to_string(c);
-    s += ",half_x,half_y,half_z,axis_cone_half_angle,roll_half_range,mount_x,mount_y,mount_z,facets,certified_area\n";
+    using detail::plan_export::fixed;
+    std::string s = "camera,x_mm,y_mm,z_mm,qx,qy,qz,qw";
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) s += ",r" + std::to_string(r) + std::to_string(c);
+    s += ",half_x_mm,half_y_mm,half_z_mm,axis_cone_half_angle_deg,roll_half_range_deg,mount_x_mm,mount_y_mm,mount_z_mm"
+         ",aim_x_mm,aim_y_mm,aim_z_mm,aim_distance_mm,facets,certified_area_mm2\n";
     const auto exports = camera_exports(plan);
     const certipose::detail::round_to_nearest_scope nearest;
     for (const auto& e : exports) {
+        const auto& box = plan.cameras[e.index];
+        const fitter_camera f = fitter_units(e, box);
         s += std::to_string(e.index);
-        for (double v : e.position) s += "," + number(v);
-        for (double v : e.quaternion) s += "," + number(v);
-        for (int r = 0; r < 4; ++r)
-            for (int c = 0; c < 4; ++c)
-                s += "," + number(r < 3 ? (c < 3 ? e.rotation(r, c) : e.position[static_cast<std::size_t>(r)]) : (c < 3 ? 0.0 : 1.0));
-        for (double v : e.position_half) s += "," + number(v);
-        s += "," + number(e.axis.cone) + "," + number(e.axis.roll);
-        for (double v : e.mount_position) s += "," + number(v);
-        s += "," + std::to_string(plan.cameras[e.index].facets.size()) + "," + number(plan.cameras[e.index].certified_area);
-        s += "\n";
+        for (double v : f.position_mm) s += "," + fixed(v, 1);
+        for (double v : e.quaternion) s += "," + fixed(v, 9);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) s += "," + fixed(e.rotation(r, c), 9);
+        for (double v : f.half_mm) s += "," + fixed(v, 1);
+        s += "," + fixed(f.axis_cone_deg, 2) + "," + fixed(f.roll_deg, 2);
+        for (double v : f.mount_mm) s += "," + fixed(v, 1);
+        if (f.aim_mm) {
+            for (double v : *f.aim_mm) s += "," + fixed(v, 1);
+            s += "," + fixed(f.aim_distance_mm, 1);
+        } else {
+            s += ",,,,";  // a plan written before aim points were recorded
+        }
+        s += "," + std::to_string(box.facets.size()) + "," + fixed(1e6 * box.certified_area, 1) + "\n";
     }
     return s;
 }
@@ -131,29 +230,53 @@ inline void check_frame_name(const std::string& option, const std::string& name)
     if (!ok) throw invalid_argument(option, "expected a frame name of letters, digits, '_', '/', '-' or '.', got '" + name + "'");
 }
 
-/// A URDF snippet: per camera, a `camera_<k>_mount` link on a fixed joint to `parent_frame` at the
-/// nominal mount pose, and a `camera_<k>_optical_frame` link on a fixed joint to the mount at the
-/// mount offset (the optical frame's axes are the mount's). Paste it inside a <robot>.
-inline std::string plan_urdf(const plan_document& plan, const std::string& parent_frame) {
-    check_frame_name("parent_frame", parent_frame);
+/// What `plan_urdf` writes.
+struct urdf_options {
+    std::string parent_frame = "world";  ///< the link the cameras are fixed to
+    /// Camera k's links are `link_prefix + k + "_mount"` and `+ "_optical_frame"`; the MoveIt
+    /// export takes the same prefix, so that its link names are this URDF's.
+    std::string link_prefix = "camera_";
+    std::string robot_name = "certipose_cameras";
+    /// Only the links and joints of the cameras, to paste inside another <robot> that has
+    /// `parent_frame`; otherwise a complete <robot> that declares `parent_frame` as its root link.
+    bool snippet = false;
+};
+
+/// A URDF (docs/conventions.md#urdf): per camera, a `<prefix>k_mount` link on a fixed joint to
+/// `parent_frame` at the nominal mount pose, and a `<prefix>k_optical_frame` link on a fixed joint
+/// to the mount at the mount offset (the optical frame's axes are the mount's).
+inline std::string plan_urdf(const plan_document& plan, const urdf_options& o = {}) {
+    check_frame_name("parent_frame", o.parent_frame);
+    check_frame_name("link_prefix", o.link_prefix + "0");
+    check_frame_name("robot_name", o.robot_name);
     using detail::plan_export::number;
     const auto exports = camera_exports(plan);
     const certipose::detail::round_to_nearest_scope nearest;
     const auto xyz = [&](const std::array<double, 3>& v) { return number(v[0]) + " " + number(v[1]) + " " + number(v[2]); };
-    std::string s = "<!-- certipose deployment plan: " + std::to_string(exports.size()) +
-                    " cameras, nominal poses (docs/conventions.md#urdf). Paste inside <robot>. -->\n";
-    for (const auto& e : exports) {
-        const std::string k = std::to_string(e.index);
-        const auto rpy = urdf_rpy(e.rotation);
-        s += "<link name=\"camera_" + k + "_mount\"/>\n";
-        s += "<joint name=\"camera_" + k + "_mount_joint\" type=\"fixed\">\n";
-        s += "  <parent link=\"" + parent_frame + "\"/>\n  <child link=\"camera_" + k + "_mount\"/>\n";
-        s += "  <origin xyz=\"" + xyz(e.mount_position) + "\" rpy=\"" + xyz(rpy) + "\"/>\n</joint>\n";
-        s += "<link name=\"camera_" + k + "_optical_frame\"/>\n";
-        s += "<joint name=\"camera_" + k + "_optical_joint\" type=\"fixed\">\n";
-        s += "  <parent link=\"camera_" + k + "_mount\"/>\n  <child link=\"camera_" + k + "_optical_frame\"/>\n";
-        s += "  <origin xyz=\"" + xyz(plan.camera.mount_offset) + "\" rpy=\"0 0 0\"/>\n</joint>\n";
+    const std::string in = o.snippet ? "" : "  ";
+    std::string s;
+    if (o.snippet) {
+        s = "<!-- certipose deployment plan: " + std::to_string(exports.size()) +
+            " cameras, nominal poses (docs/conventions.md#urdf). Paste inside a <robot> that has the link \"" +
+            o.parent_frame + "\". -->\n";
+    } else {
+        s = "<?xml version=\"1.0\"?>\n<!-- certipose deployment plan: " + std::to_string(exports.size()) +
+            " cameras, nominal poses (docs/conventions.md#urdf). -->\n<robot name=\"" + o.robot_name + "\">\n" +
+            in + "<link name=\"" + o.parent_frame + "\"/>\n";
     }
+    for (const auto& e : exports) {
+        const std::string k = o.link_prefix + std::to_string(e.index);
+        const auto rpy = urdf_rpy(e.rotation);
+        s += in + "<link name=\"" + k + "_mount\"/>\n";
+        s += in + "<joint name=\"" + k + "_mount_joint\" type=\"fixed\">\n";
+        s += in + "  <parent link=\"" + o.parent_frame + "\"/>\n" + in + "  <child link=\"" + k + "_mount\"/>\n";
+        s += in + "  <origin xyz=\"" + xyz(e.mount_position) + "\" rpy=\"" + xyz(rpy) + "\"/>\n" + in + "</joint>\n";
+        s += in + "<link name=\"" + k + "_optical_frame\"/>\n";
+        s += in + "<joint name=\"" + k + "_optical_joint\" type=\"fixed\">\n";
+        s += in + "  <parent link=\"" + k + "_mount\"/>\n" + in + "  <child link=\"" + k + "_optical_frame\"/>\n";
+        s += in + "  <origin xyz=\"" + xyz(plan.camera.mount_offset) + "\" rpy=\"0 0 0\"/>\n" + in + "</joint>\n";
+    }
+    if (!o.snippet) s += "</robot>\n";
     return s;
 }
 

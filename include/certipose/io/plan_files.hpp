@@ -7,7 +7,7 @@
 // "task", "settings": {"candidates", "tolerance", "target_coverage", "max_cameras"}, "occluders",
 // "keep_in", "keep_out" (io/scene_record.hpp; absent: none), "cameras": [{"position",
 // "orientation", "nominal": [x,y,z,φ,γ,β], "facets": [certified facet indices],
-// "certified_area", "from_facet"}], "coverage": {"certified_area", "coverable_area",
+// "certified_area", "from_facet", "aim": [x,y,z]}], "coverage": {"certified_area", "coverable_area",
 // "total_area", "lower_bound_cameras", "lower_bound_method", "curve"}, "uncovered": [{"facet",
 // "reason"}]}. A facet listed under a camera is inspected from every pose of its 6D box.
 // plan_to_json writes it, plan_from_json / read_plan read it back (the same document).
@@ -47,10 +47,10 @@ namespace certipose {
 
 /// Why a facet is in no camera's certified set.
 enum class uncovered_reason {
-    never_visible,  ///< the run proved that no pose inspects it (no VALID or BOUNDARY box)
+    never_visible,  ///< the run proved that no pose inspects it (no VALID or BOUNDARY box, or its screen skipped it)
     boundary_only,  ///< only BOUNDARY boxes at this ε: finer thresholds may certify it
     not_selected,   ///< certified by some candidate, but the plan stopped before taking one
-    not_solved,     ///< not in the run's facet selection, or skipped by it
+    not_solved,     ///< not in the run's facet selection
     not_finished,   ///< a budget, deadline or cancellation stopped its solve before any box
 };
 
@@ -73,6 +73,9 @@ struct plan_document {
         std::vector<std::size_t> facets;
         double certified_area = 0;
         std::size_t from_facet = 0;  ///< the facet whose VALID box this is
+        /// Where the nominal optical axis meets the part (make_plan.hpp's plan_aim); plans written
+        /// before it was recorded have none.
+        std::optional<std::array<double, 3>> aim;
         friend bool operator==(const camera_box&, const camera_box&) = default;
     };
     struct coverage_record {
@@ -139,6 +142,7 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
         cam["facets"] = c.facets;
         cam["certified_area"] = finite(c.certified_area, child(path, "certified_area"));
         cam["from_facet"] = c.from_facet;
+        if (c.aim) cam["aim"] = numbers(*c.aim, child(path, "aim"));
         cameras.push_back(std::move(cam));
     }
     j["cameras"] = std::move(cameras);
@@ -215,6 +219,7 @@ inline plan_document plan_from_json(const nlohmann::json& j, const std::string& 
                 cam.facets.push_back(as_count(facets[k], element(child(path, "facets"), k)));
             cam.certified_area = required_number(c, path, "certified_area");
             cam.from_facet = as_count(require(c, path, "from_facet", "an integer"), child(path, "from_facet"));
+            if (const auto aim = c.find("aim"); aim != c.end()) cam.aim = as_numbers<3>(*aim, child(path, "aim"));
             p.cameras.push_back(std::move(cam));
         }
 

@@ -6,7 +6,8 @@
 // Scene (docs/conventions.md#gltf): a root node "certipose plan" turning the part frame (z up)
 // into glTF's y-up convention, with children "part" (a non-indexed triangle list: triangle i is
 // facet i, so a viewer's picked triangle index is the facet index; COLOR_0 and flat normals per
-// facet), and per camera k "camera k frustum" and "camera k tolerance" (LINES). The frustum is
+// facet), and per camera k "camera k frustum" and "camera k tolerance" (LINES) and "camera k view"
+// (a glTF perspective camera at the nominal pose, the image's field of view). The frustum is
 // drawn from the nominal projection centre to the image corners at the distance of the camera's
 // facets (clamped to its depth of field); it is a picture, not a certificate.
 #pragma once
@@ -106,6 +107,34 @@ inline int line_node(tinygltf::Model& model, buffer_builder& buf, const std::str
     return static_cast<int>(model.nodes.size()) - 1;
 }
 
+/// A glTF camera object looking from camera `e`'s nominal pose, so that a CAD or render tool can
+/// look through it. glTF cameras look down their −z with +y up; our optical frame looks down +z
+/// with y down, so the node turns by π about the optical x axis. The field of view is the image's
+/// (yfov from fy and the height; aspectRatio makes the horizontal extent w/fx too). A principal
+/// point off the centre or a skew cannot be said in glTF: the view is a picture, not a certificate.
+inline int camera_node(tinygltf::Model& model, const plan_document& plan, const camera_export& e) {
+    const auto& K = plan.camera.K;
+    tinygltf::Camera cam;
+    cam.name = "camera " + std::to_string(e.index);
+    cam.type = "perspective";
+    cam.perspective.yfov = 2 * std::atan(plan.camera.height_px / (2 * K[1][1]));
+    cam.perspective.aspectRatio = (plan.camera.width_px / K[0][0]) / (plan.camera.height_px / K[1][1]);
+    cam.perspective.znear = std::max(1e-3, plan.camera.d_min / 2);
+    if (std::isfinite(plan.camera.d_max) && plan.camera.d_max > cam.perspective.znear)
+        cam.perspective.zfar = 2 * plan.camera.d_max;  // else 0: glTF's infinite projection
+    model.cameras.push_back(cam);
+    const Eigen::Matrix3d look = e.rotation * Eigen::Vector3d(1, -1, -1).asDiagonal();
+    Eigen::Quaterniond q(look);
+    q.normalize();
+    tinygltf::Node node;
+    node.name = "camera " + std::to_string(e.index) + " view";
+    node.camera = static_cast<int>(model.cameras.size()) - 1;
+    node.translation = {e.position[0], e.position[1], e.position[2]};
+    node.rotation = {q.x(), q.y(), q.z(), q.w()};
+    model.nodes.push_back(node);
+    return static_cast<int>(model.nodes.size()) - 1;
+}
+
 }  // namespace detail::gltf
 
 /// The plan's scene as a .glb file's bytes. Throws out_of_range for a plan facet beyond `mesh`.
@@ -188,6 +217,7 @@ inline std::string plan_glb(const triangle_mesh& mesh, const plan_document& plan
             box.emplace_back(cam.position[0][i & 1], cam.position[1][(i >> 1) & 1], cam.position[2][(i >> 2) & 1]);
         root.children.push_back(line_node(model, buf, "camera " + std::to_string(e.index) + " tolerance", box,
                                           {0, 1, 2, 3, 4, 5, 6, 7, 0, 2, 1, 3, 4, 6, 5, 7, 0, 4, 1, 5, 2, 6, 3, 7}, mat));
+        root.children.push_back(camera_node(model, plan, e));
     }
     model.nodes.push_back(root);
     tinygltf::Scene scene;
