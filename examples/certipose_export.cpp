@@ -5,11 +5,11 @@
 // viewer.
 //
 //   certipose-export PLAN.json --format csv|moveit|urdf|glb|html --out FILE
-//                    [--mesh PART [--scale S]] [--parent-frame NAME] [--link optical|mount]
+//                    [--mesh PART [--scale S] [--part-pose POSE]] [--parent-frame NAME] [--link optical|mount]
 //                    [--link-prefix PREFIX] [--robot-name NAME] [--snippet] [--title TEXT] [--quiet]
 //
-// glb and html draw the part, so they need --mesh (the plan's part; --scale defaults to the
-// scale the plan recorded, and the face count must match). The output is written atomically and
+// glb and html draw the part, so they need --mesh (the plan's part; --scale and --part-pose
+// default to what the plan recorded, and the face count and digest must match). The output is written atomically and
 // never over an input. Formats: docs/conventions.md#exports. Errors: one line
 // "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line);
 // SIGINT/SIGTERM exit 130/143 and write nothing.
@@ -51,7 +51,7 @@ struct export_program {
         "(.glb, with camera objects) or a self-contained HTML viewer (docs/conventions.md#exports).";
 
     struct options {
-        std::string plan, format, out, mesh, scale;
+        std::string plan, format, out, mesh, scale, part_pose;
         std::optional<std::string> parent_frame, link, link_prefix, robot_name, title;  ///< unset: not given (given empty is a mistake too)
         bool snippet = false, quiet = false;
     };
@@ -61,6 +61,7 @@ struct export_program {
         std::string format, parent_frame = "world", link = "optical", link_prefix = "camera_",
                     robot_name = "certipose_cameras", title;
         std::optional<double> scale;
+        std::optional<certipose::part_pose> part_pose;
         bool snippet = false, quiet = false;
 
         std::vector<certipose::named_path> files_read() const {
@@ -79,6 +80,10 @@ struct export_program {
             ->type_name("PART")
             ->check(CLI::ExistingFile);
         app.add_option("--scale", text.scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
+        app.add_option("--part-pose", text.part_pose,
+                       "place the part as the plan's run did: X,Y,Z,ROLL,PITCH,YAW or a 3x4/4x4 matrix (default: the "
+                       "plan's mesh.pose)")
+            ->type_name("POSE");
         app.add_option("--parent-frame", text.parent_frame,
                        "urdf: the link the cameras are fixed to (default world); moveit: the planning frame of the part")
             ->type_name("NAME");
@@ -117,6 +122,7 @@ struct export_program {
         only_for("--title", text.title.has_value(), a.format == "html", "--format html");
         only_for("--mesh", !text.mesh.empty(), picture, "--format glb and html");
         only_for("--scale", !text.scale.empty(), picture, "--format glb and html");
+        only_for("--part-pose", !text.part_pose.empty(), picture, "--format glb and html");
         if (text.parent_frame) a.parent_frame = *text.parent_frame;
         if (text.link) a.link = *text.link;
         if (text.link_prefix) a.link_prefix = *text.link_prefix;
@@ -133,6 +139,7 @@ struct export_program {
                               " is a STEP file; give the tessellation the plan is for, mesh.off in the certipose-part "
                               "run's folder");
         if (!text.scale.empty()) a.scale = parse_double("--scale", text.scale, "a positive finite factor");
+        if (!text.part_pose.empty()) a.part_pose = parse_part_pose(text.part_pose);
         if (a.title.empty()) a.title = "certipose plan: " + a.plan.filename().string();
         check_output("--out", a.out);
         return a;
@@ -156,7 +163,13 @@ std::string content(const arguments& args, const certipose::plan_document& plan)
                    .link = args.link == "mount" ? certipose::constrained_link::mount : certipose::constrained_link::optical_frame,
                    .link_prefix = args.link_prefix});
     const double scale = args.scale.value_or(plan.mesh.scale);
-    const certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = scale});
+    certipose::triangle_mesh mesh = certipose::read_mesh(args.mesh, {.scale = scale});
+    if (args.part_pose) {
+        mesh = certipose::posed(mesh, *args.part_pose);
+    } else if (plan.mesh.pose) {  // where the plan's run placed the part
+        mesh = certipose::posed(mesh, certipose::part_pose_from_matrix(
+                                          std::vector<double>(plan.mesh.pose->begin(), plan.mesh.pose->end()), "mesh.pose"));
+    }
     // The plan's facet indices mean something only on its own part.
     const auto mismatch = [&](const char* what, const std::string& theirs, const std::string& ours) {
         throw certipose::invalid_argument(what, args.plan.string() + ": the plan's " + what + " (" + theirs +

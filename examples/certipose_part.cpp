@@ -2,7 +2,7 @@
 // in parallel.
 //
 //   certipose-part --mesh PART --camera CAMERA --position-eps E --orientation-eps O --out DIR
-//                  [--threads N] [--facets 0,5,17-30] [--boundary] [--scale S]
+//                  [--threads N] [--facets 0,5,17-30] [--boundary] [--scale S] [--part-pose POSE]
 //                  [--occlusion aabb|boolean|none] [--max-boxes-per-facet K]
 //                  [--facet-time-limit SECONDS] [--time-limit SECONDS] [--max-boxes N]
 //                  [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
@@ -206,7 +206,8 @@ certipose::part_summary describe_run(const arguments& args, const program_inputs
                                      const certipose::part_options& opt) {
     using Occlusion = typename Part::solver_type::occlusion_type;
     certipose::part_summary s;
-    s.mesh = {args.inputs.mesh.string(), in.mesh.num_faces(), args.inputs.scale, certipose::mesh_digest(in.mesh)};
+    s.mesh = {args.inputs.mesh.string(), in.mesh.num_faces(), args.inputs.scale, certipose::mesh_digest(in.mesh),
+              pose_record(args.inputs)};
     certipose::describe_camera(s, part.solver().camera(), in.camera.task);
     s.camera.mount_offset = in.camera.mount_offset;
     auto& st = s.settings;

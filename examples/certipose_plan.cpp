@@ -1,6 +1,6 @@
 // certipose-plan — the fewest camera boxes that certify a part (docs/coverage.md).
 //
-//   certipose-plan --mesh PART --camera CAMERA [--scale S]
+//   certipose-plan --mesh PART --camera CAMERA [--scale S] [--part-pose POSE]
 //                  (--part-results DIR | --position-eps E --orientation-eps O [--facets LIST])
 //                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
 //                  [--exact SECONDS] [--lp-seconds SECONDS]
@@ -209,7 +209,8 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     const bool progress = show_progress(args.quiet);
 
     certipose::plan_document doc;
-    doc.mesh = {args.inputs.mesh.string(), mesh.num_faces(), args.inputs.scale, certipose::mesh_digest(mesh)};
+    doc.mesh = {args.inputs.mesh.string(), mesh.num_faces(), args.inputs.scale, certipose::mesh_digest(mesh),
+                pose_record(args.inputs)};
     certipose::part_summary here;
     here.mesh = doc.mesh;
     certipose::describe_camera(here, solver.camera(), input.task);

@@ -2,7 +2,7 @@
 //
 //   certipose-solve --mesh PART --facet N --camera CAMERA --position-eps 0.1
 //                   --orientation-eps 0.38 --out RESULT.json [--ply BOXES.ply]
-//                   [--occlusion aabb|boolean|none] [--scale S] [--max-boxes N]
+//                   [--occlusion aabb|boolean|none] [--scale S] [--part-pose POSE] [--max-boxes N]
 //                   [--time-limit SECONDS] [--occluder MESH[:SCALE]]... [--keep-in REGION]...
 //                   [--keep-out REGION]... [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
 //                   [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]

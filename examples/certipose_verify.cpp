@@ -3,7 +3,7 @@
 // those not proven impossible, P(B), with the coverage interval [area(C), area(P)] / area; for an
 // exact pose, also the largest box around it that keeps every facet of C certified.
 //
-//   certipose-verify --mesh PART --camera CAMERA --poses POSES.json [--scale S]
+//   certipose-verify --mesh PART --camera CAMERA --poses POSES.json [--scale S] [--part-pose POSE]
 //                    [--out REPORT.json] [--no-tolerance] [--occluder MESH[:SCALE]]...
 //                    [--keep-in REGION]... [--keep-out REGION]... [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]]
 //                    [--working-distance DMIN,DMAX --min-view-angle RAD] [--quiet]
@@ -121,6 +121,7 @@ int verify_program::run(const arguments& args, const interruption& signals) {
     report["format"] = "certipose-verify-report";
     report["version"] = certipose::detail::json_io::format_version;
     report["mesh"] = {{"path", args.inputs.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.inputs.scale}};
+    if (args.inputs.part_pose) report["mesh"]["pose"] = certipose::mesh_record_json({.pose = pose_record(args.inputs)})["pose"];
     certipose::detail::json_io::put_scene(report, in.extra.record);  // "occluders", "keep_in", "keep_out"
     // The placement tolerance every facet of "facets" is certified for (absent: nominal).
     if (input.task.placement) {

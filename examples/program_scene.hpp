@@ -20,6 +20,7 @@
 #include <certipose/io/read_step.hpp>
 #endif
 
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstddef>
@@ -92,9 +93,10 @@ struct program_inputs {
     scene extra;                              ///< the --occluder meshes and the scene's record
 };
 
-/// The part: a mesh file read by read_mesh (× --scale), or a STEP file read by read_step with
-/// --deflection; io_error names the file, also when this build of the programs reads no STEP.
-inline std::pair<certipose::triangle_mesh, std::optional<certipose::cad_model>> read_part(const input_arguments& args) {
+/// The part as read, before --part-pose: a mesh file read by read_mesh (× --scale), or a STEP
+/// file read by read_step with --deflection; io_error names the file, also when this build of the
+/// programs reads no STEP.
+inline std::pair<certipose::triangle_mesh, std::optional<certipose::cad_model>> read_part_file(const input_arguments& args) {
     if (!certipose::is_step_path(args.mesh)) return {certipose::read_mesh(args.mesh, {.scale = args.scale}), std::nullopt};
 #if defined(CERTIPOSE_PROGRAMS_READ_STEP)
     certipose::step_options opt;
@@ -108,6 +110,26 @@ inline std::pair<certipose::triangle_mesh, std::optional<certipose::cad_model>> 
                                                       "(OpenCASCADE was not found: Debian libocct-data-exchange-dev); "
                                                       "give a mesh (OFF, OBJ, PLY, STL) or rebuild");
 #endif
+}
+
+/// The part in the cell: read_part_file, moved by --part-pose (the same faces, so a STEP part's
+/// CAD faces still name its triangles). A pose that makes a sliver exactly degenerate is a
+/// mesh_error naming the face and --part-pose.
+inline std::pair<certipose::triangle_mesh, std::optional<certipose::cad_model>> read_part(const input_arguments& args) {
+    auto part = read_part_file(args);
+    if (!args.part_pose) return part;
+    try {
+        part.first = certipose::posed(part.first, *args.part_pose);
+    } catch (const certipose::mesh_error& e) {
+        throw certipose::mesh_error(args.mesh.string() + " after --part-pose: " + e.what());
+    }
+    return part;
+}
+
+/// What the outputs record of --part-pose (the mesh record's "pose"): its row-major 4×4, or none.
+inline std::optional<std::array<double, 16>> pose_record(const input_arguments& args) {
+    if (!args.part_pose) return std::nullopt;
+    return args.part_pose->matrix();
 }
 
 /// Reads the inputs in one order (the part, the occluders, the camera), then resolves the

@@ -24,7 +24,7 @@
 // throws as one line "<name>: ..." (exit 1).
 //
 // The flags several programs share are declared once here, each with its parser:
-// - the inputs: --mesh (a mesh, or a STEP file with --deflection), --camera, --scale and the
+// - the inputs: --mesh (a mesh, or a STEP file with --deflection), --camera, --scale, --part-pose and the
 //   scene options of program_support.hpp
 //   (`add_input_options`, `parse_input_options`; program_scene.hpp reads them, `read_inputs`);
 // - the facet solver: --position-eps, --orientation-eps, the two per-facet budgets and the
@@ -56,9 +56,9 @@ namespace certipose_program {
 
 // ---- the inputs -----------------------------------------------------------------------------
 
-/// --mesh, --camera, --scale, --deflection and the scene options as given.
+/// --mesh, --camera, --scale, --deflection, --part-pose and the scene options as given.
 struct input_options_text {
-    std::string mesh, camera, scale, deflection;
+    std::string mesh, camera, scale, deflection, part_pose;
     scene_options_text scene;
 };
 
@@ -69,6 +69,7 @@ struct input_arguments {
     double scale = 1.0;            ///< --scale: mesh coordinates × S (not for STEP: it has its unit)
     std::optional<double> deflection;          ///< --deflection LIN (STEP only; unset: the reader's default)
     std::optional<double> angular_deflection;  ///< --deflection LIN,ANG (STEP only)
+    std::optional<certipose::part_pose> part_pose;  ///< --part-pose: the part moved into the cell's frame
     scene_arguments scene;         ///< --occluder, --keep-in, --keep-out, --part-tolerance, ...
 
     /// The files read: no output may be one of them.
@@ -79,7 +80,7 @@ struct input_arguments {
     }
 };
 
-/// Adds --mesh, --camera, --scale, --deflection and the scene options to `app`.
+/// Adds --mesh, --camera, --scale, --deflection, --part-pose and the scene options to `app`.
 inline void add_input_options(CLI::App& app, input_options_text& text,
                               const char* scale_help = "multiply mesh coordinates by S (e.g. 0.001 for mm; not for STEP)") {
     app.add_option("--mesh", text.mesh,
@@ -99,6 +100,10 @@ inline void add_input_options(CLI::App& app, input_options_text& text,
                    "STEP only: the tessellation's chordal deflection, metres (default: 1/1000 of the part's diagonal), "
                    "and its angular deflection, radians (default 0.5); what is certified is the tessellation")
         ->type_name("LIN[,ANG]");
+    app.add_option("--part-pose", text.part_pose,
+                   "place the part in the cell after --scale: X,Y,Z,ROLL,PITCH,YAW (metres, radians; as a URDF origin) "
+                   "or a row-major 3x4/4x4 matrix; occluders, regions and results are in the cell's frame")
+        ->type_name("POSE");
     add_scene_options(app, text.scene);
 }
 
@@ -129,6 +134,7 @@ inline input_arguments parse_input_options(const input_options_text& text) {
             a.angular_deflection = angle;
         }
     }
+    if (!text.part_pose.empty()) a.part_pose = parse_part_pose(text.part_pose);
     a.scene = parse_scene_options(text.scene, a.camera);
     return a;
 }

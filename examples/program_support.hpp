@@ -29,10 +29,11 @@
 //                            file's kind is chosen by content (io/calibration.hpp `detect`), here
 //                            at parse time, so that either mistake is a usage error (exit 2).
 // REGION = box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or sphere:X,Y,Z,R (metres, the part's frame after
-// --scale; solver/camera_regions.hpp). Reading the occluders and naming them in the occlusion
+// --scale and --part-pose: the cell's; solver/camera_regions.hpp). Reading the occluders and naming them in the occlusion
 // policy's errors needs CGAL: program_scene.hpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <charconv>
@@ -60,6 +61,7 @@
 #include <certipose/error.hpp>
 #include <certipose/io/calibration.hpp>
 #include <certipose/occlusion/mesh_semantics.hpp>
+#include <certipose/pose/part_pose.hpp>
 #include <certipose/pose/placement_tolerance.hpp>
 #include <certipose/solver/camera_regions.hpp>
 #include <certipose/solver/paving.hpp>
@@ -233,7 +235,7 @@ inline void add_scene_options(CLI::App& app, scene_options_text& text) {
         ->allow_extra_args(false);
     app.add_option("--keep-out", text.keep_out,
                    "no camera position in REGION: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or sphere:X,Y,Z,R "
-                   "(metres, part frame after --scale); repeatable")
+                   "(metres, part frame after --scale and --part-pose); repeatable")
         ->type_name("REGION")
         ->allow_extra_args(false);
     app.add_option("--keep-in", text.keep_in,
@@ -244,7 +246,7 @@ inline void add_scene_options(CLI::App& app, scene_options_text& text) {
                    "the part may be off its nominal placement by |t_i| <= T_i metres and a rotation of at most ROT "
                    "radians about the datum: every VALID box holds for every such placement")
         ->type_name("TX,TY,TZ,ROT");
-    app.add_option("--datum", text.datum, "the point the part rotates about (metres, part frame after --scale; "
+    app.add_option("--datum", text.datum, "the point the part rotates about (metres, part frame after --scale and --part-pose; "
                                           "default: the part's centroid); needs --part-tolerance")
         ->type_name("X,Y,Z");
     app.add_option("--working-distance", text.working_distance,
@@ -281,6 +283,30 @@ std::array<double, N> parse_numbers(const std::string& option, const std::string
         at = end + 1;
     }
     return out;
+}
+
+/// --part-pose: "X,Y,Z,ROLL,PITCH,YAW" (metres, radians; R = Rz(yaw)·Ry(pitch)·Rx(roll), as in the
+/// URDF export) or a row-major 3×4 / 4×4 matrix (12 or 16 numbers); a usage error names the text.
+inline certipose::part_pose parse_part_pose(const std::string& text) {
+    const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
+    constexpr const char* shape = "X,Y,Z,ROLL,PITCH,YAW (metres, radians) or a row-major 3x4 or 4x4 matrix";
+    try {
+        if (n == 6) {
+            const auto v = parse_numbers<6>("--part-pose", text, shape);
+            return certipose::part_pose_from_xyz_rpy({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, "--part-pose");
+        }
+        if (n == 12) {
+            const auto v = parse_numbers<12>("--part-pose", text, shape);
+            return certipose::part_pose_from_matrix(std::vector<double>(v.begin(), v.end()), "--part-pose");
+        }
+        if (n == 16) {
+            const auto v = parse_numbers<16>("--part-pose", text, shape);
+            return certipose::part_pose_from_matrix(std::vector<double>(v.begin(), v.end()), "--part-pose");
+        }
+    } catch (const certipose::invalid_argument& e) {
+        throw usage_error(e.what());
+    }
+    throw usage_error("--part-pose " + text + ": expected " + shape + ", got " + std::to_string(n) + " numbers");
 }
 
 /// True when the --camera file is a calibration file (OpenCV YAML/JSON, ROS camera_info) rather

@@ -23,6 +23,7 @@
 #include "certipose/camera/calibrated_camera.hpp"  // IWYU pragma: export
 
 #include "certipose/pose/interval_box.hpp"  // IWYU pragma: export
+#include "certipose/pose/part_pose.hpp"  // IWYU pragma: export
 #include "certipose/pose/pose_box.hpp"  // IWYU pragma: export
 #include "certipose/pose/rotation.hpp"  // IWYU pragma: export
 

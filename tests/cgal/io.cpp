@@ -490,6 +490,7 @@ TEST_CASE("summary.json: format and version lead, mount_offset round-trips, othe
     own.index = 1, own.valid = 3;
     reused.index = 2, reused.valid = 3, reused.reused_from = 1;
     s.facets = {own, reused};
+    s.mesh.pose = certipose::part_pose_from_xyz_rpy({0.1, 0.2, 0.3}, {0.4, 0.5, 0.6}).matrix();  // --part-pose
     const fs::path dir = scratch("summary") / "run";
     fs::create_directories(dir);
     const auto j = certipose::part_summary_to_json(s);
@@ -499,7 +500,16 @@ TEST_CASE("summary.json: format and version lead, mount_offset round-trips, othe
     certipose::write_json_file(dir / "summary.json", j);
     const certipose::part_summary back = certipose::read_part_summary(dir);
     CHECK(back.camera == s.camera);
-    CHECK(back.mesh == s.mesh);
+    CHECK(back.mesh == s.mesh);  // the pose to the last bit
+    REQUIRE(j["mesh"]["pose"].size() == 4);
+    CHECK(j["mesh"]["pose"][3] == nlohmann::json::array({0.0, 0.0, 0.0, 1.0}));
+    {
+        auto mirrored = nlohmann::json::parse(j.dump());
+        mirrored["mesh"]["pose"][2][2] = -mirrored["mesh"]["pose"][2][2].get<double>();
+        mirrored["mesh"]["pose"][2][0] = -mirrored["mesh"]["pose"][2][0].get<double>();
+        mirrored["mesh"]["pose"][2][1] = -mirrored["mesh"]["pose"][2][1].get<double>();
+        CHECK(argument_error([&] { (void)certipose::part_summary_from_json(mirrored); }).first == "mesh.pose");
+    }
     // The reuse stage: on by default, and which facet's boxes a reused facet took.
     CHECK(j["settings"]["reuse"] == true);
     CHECK(!j["facets"][0].contains("reused_from"));

@@ -106,12 +106,21 @@ inline void check_run_scene(const certipose::scene_record& run, const certipose:
 inline void check_part_run(const part_summary& run, const part_summary& here, const std::string& where) {
     const auto mismatch = [&](const std::string& what, const std::string& theirs, const std::string& ours) {
         throw certipose::invalid_argument(what, where + ": the run's " + what + " (" + theirs + ") is not this plan's (" + ours +
-                                                    "): plan with the mesh, --scale and camera the run used");
+                                                    "): plan with the mesh, --scale, --part-pose and camera the run used");
     };
     const auto text = [](double v) { return certipose::detail::format_double(v); };
     if (run.mesh.faces != here.mesh.faces)
         mismatch("mesh.faces", std::to_string(run.mesh.faces), std::to_string(here.mesh.faces));
     if (!detail::same_double(run.mesh.scale, here.mesh.scale)) mismatch("mesh.scale", text(run.mesh.scale), text(here.mesh.scale));
+    if (run.mesh.pose != here.mesh.pose) {
+        const auto pose_text = [](const std::optional<std::array<double, 16>>& m) {
+            if (!m) return std::string("none");
+            std::string s;
+            for (std::size_t i = 0; i < 12; ++i) s += (i ? (i % 4 ? "," : ";") : "") + certipose::detail::format_double((*m)[i]);
+            return s;
+        };
+        mismatch("mesh.pose", pose_text(run.mesh.pose), pose_text(here.mesh.pose));
+    }
     if (!run.mesh.digest.empty() && run.mesh.digest != here.mesh.digest)
         mismatch("mesh.digest", run.mesh.digest, here.mesh.digest);
     const auto& a = run.camera;

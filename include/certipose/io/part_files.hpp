@@ -9,7 +9,7 @@
 // so memory holds one facet's boxes at a time.
 //
 // summary.json: {"format": "certipose-part-summary", "version": 1, "mesh": {"path", "faces", "scale",
-// "digest"}, "camera": {as in the single-facet result},
+// "digest", "pose" (a row-major 4×4, only when --part-pose moved the part)}, "camera": {as in the single-facet result},
 // "task", "settings" (every option that changes the answer: ε_p, ε_o, budgets, occlusion,
 // "mesh_semantics", "paving" and carving's steps, "refine_seconds", "grow", "max_boxes",
 // "facets", "keep_largest", "box_store", "reuse", "patches": false or {"max_cone", "max_extent",
@@ -26,10 +26,12 @@
 #include "certipose/geometry/cad_faces.hpp"
 #include "certipose/io/json.hpp"
 #include "certipose/io/result_document.hpp"
+#include "certipose/pose/part_pose.hpp"
 #include "certipose/part/part_solver.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -118,6 +120,8 @@ struct part_summary {
         std::size_t faces = 0;
         double scale = 1.0;
         std::string digest{};  ///< mesh_digest of the mesh the run solved; empty: not recorded
+        /// The part's placement (pose/part_pose.hpp) as a row-major 4×4; none: as read.
+        std::optional<std::array<double, 16>> pose{};
         friend bool operator==(const mesh_record&, const mesh_record&) = default;
     };
     struct settings_record {
@@ -239,14 +243,29 @@ inline facet_record facet_record_from_json(const nlohmann::json& element, const 
     return r;
 }
 
+/// The "mesh" object of summary.json and PLAN.json.
+inline nlohmann::ordered_json mesh_record_json(const part_summary::mesh_record& m) {
+    using namespace detail::json_io;
+    ordered_json j = {{"path", m.path}, {"faces", m.faces}, {"scale", finite(m.scale, "mesh.scale")}};
+    if (!m.digest.empty()) j["digest"] = m.digest;
+    if (m.pose) {
+        ordered_json rows = ordered_json::array();
+        for (std::size_t r = 0; r < 4; ++r)
+            rows.push_back(numbers(std::array<double, 4>{(*m.pose)[4 * r], (*m.pose)[4 * r + 1], (*m.pose)[4 * r + 2],
+                                                         (*m.pose)[4 * r + 3]},
+                                   element("mesh.pose", r)));
+        j["pose"] = std::move(rows);
+    }
+    return j;
+}
+
 /// summary.json as JSON (keys in the documented order).
 inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     using namespace detail::json_io;
     ordered_json j;
     j["format"] = part_summary_format;
     j["version"] = format_version;
-    j["mesh"] = {{"path", s.mesh.path}, {"faces", s.mesh.faces}, {"scale", finite(s.mesh.scale, "mesh.scale")}};
-    if (!s.mesh.digest.empty()) j["mesh"]["digest"] = s.mesh.digest;
+    j["mesh"] = mesh_record_json(s.mesh);
     j["camera"] = camera_record_json(s.camera);
     j["task"] = task_record_json(s.task);
     const auto optional = [](const std::optional<double>& v, const std::string& path) {
@@ -331,7 +350,8 @@ inline nlohmann::ordered_json part_summary_to_json(const part_summary& s) {
     return j;
 }
 
-/// Reads the "mesh" object of summary.json and PLAN.json: path, faces, scale and, when given, digest.
+/// Reads the "mesh" object of summary.json and PLAN.json: path, faces, scale and, when given,
+/// digest and pose.
 inline part_summary::mesh_record mesh_record_from_json(const nlohmann::json& j) {
     using namespace detail::json_io;
     part_summary::mesh_record m;
@@ -340,6 +360,14 @@ inline part_summary::mesh_record mesh_record_from_json(const nlohmann::json& j) 
     m.faces = as_count(require(mesh, "mesh", "faces", "an integer"), "mesh.faces");
     m.scale = required_number(mesh, "mesh", "scale");
     if (const json* d = find(mesh, "digest")) m.digest = as_string(*d, "mesh.digest", "a string");
+    if (const json* p = find(mesh, "pose")) {
+        const auto rows = as_matrix<4, 4>(*p, "mesh.pose");
+        std::array<double, 16> flat{};
+        for (std::size_t r = 0; r < 4; ++r)
+            for (std::size_t c = 0; c < 4; ++c) flat[4 * r + c] = rows[r][c];
+        part_pose_from_matrix(std::vector<double>(flat.begin(), flat.end()), "mesh.pose");  // a rigid motion, or say so
+        m.pose = flat;
+    }
     return m;
 }
 

@@ -2,7 +2,7 @@
 // docs/conventions.md#files): PLAN.json written by certipose-plan, and the poses certipose-verify reads. Needs
 // nlohmann-json.
 //
-// PLAN.json: {"format": "certipose-plan", "version": 1, "mesh": {"path", "faces", "scale"},
+// PLAN.json: {"format": "certipose-plan", "version": 1, "mesh": {"path", "faces", "scale", "digest", "pose"},
 // "camera": {as in the single-facet result},
 // "task", "settings": {"candidates", "tolerance", "target_coverage", "max_cameras"}, "occluders",
 // "keep_in", "keep_out" (io/scene_record.hpp; absent: none), "cameras": [{"position",
@@ -115,8 +115,7 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
     ordered_json j;
     j["format"] = plan_format;
     j["version"] = format_version;
-    j["mesh"] = {{"path", p.mesh.path}, {"faces", p.mesh.faces}, {"scale", finite(p.mesh.scale, "mesh.scale")}};
-    if (!p.mesh.digest.empty()) j["mesh"]["digest"] = p.mesh.digest;  // as in summary.json
+    j["mesh"] = mesh_record_json(p.mesh);  // as in summary.json
     j["camera"] = camera_record_json(p.camera);
     j["task"] = task_record_json(p.task);
     if (p.inspected > p.candidates)
