@@ -20,6 +20,7 @@
 #include <certipose/io/read_step.hpp>
 #endif
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -27,6 +28,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -244,6 +246,20 @@ void warn_about_units(const char* program, const input_arguments& args, const ce
                   << " m): are its coordinates metres already? " << (args.scale == 1.0 ? "Check the mesh's unit"
                                                                                         : "Drop --scale")
                   << " (docs/conventions.md#units)\n";
+    }
+    // A placement tolerance the size of the part (millimetres typed as metres: 2,2,2) leaves no
+    // box that holds for every placement; say which unit it is read in.
+    if (args.scene.placement) {
+        const auto& t = args.scene.placement->translation;
+        const double most = std::max({t[0], t[1], t[2]});
+        if (most > 0.25 * size)
+            std::cerr << program << ": warning: --part-tolerance lets the part slide by " << brief(most) << " m, more than a "
+                      << "quarter of the part (" << across << "): is it in millimetres? It is read as metres: " << brief(most / 1000)
+                      << " for " << brief(most) << " mm\n";
+        if (std::isfinite(range.max) && args.scene.placement->rotation * range.max > 0.25 * size)
+            std::cerr << program << ": warning: --part-tolerance turns the part by " << brief(args.scene.placement->rotation)
+                      << " rad (" << brief(args.scene.placement->rotation * 180 / std::numbers::pi) << " degrees), which at the "
+                      << "camera's distance moves it by more than a quarter of its size: is that what the fixture allows?\n";
     }
 }
 

@@ -23,6 +23,9 @@
 //                            radians about any axis through the datum: every VALID box holds for
 //                            every such placement (pose/placement_tolerance.hpp)
 //   --datum X,Y,Z            the point the part rotates about (default: the part's centroid)
+//   --part-axis NX,NY,NZ     the fixture form: ROT turns about this direction only (a plate's
+//                            normal), so the part does not tip into the plate, and
+//   --part-tilt TILT         a further rotation of at most TILT radians about any axis
 //   --working-distance DMIN,DMAX, --min-view-angle RAD  what a calibration file given as --camera
 //                            lacks (the camera JSON's d_min, d_max and task.min_view_angle):
 //                            required with a calibration file, refused with a camera JSON. The
@@ -190,7 +193,7 @@ struct scene_arguments {
 /// The scene options as given (CLI11 fills them; parse_scene_options checks them).
 struct scene_options_text {
     std::vector<std::string> occluders, keep_in, keep_out;
-    std::string part_tolerance, datum;
+    std::string part_tolerance, datum, part_axis, part_tilt;
     std::string working_distance, min_view_angle;
     std::string mesh_semantics = "auto";
 };
@@ -246,6 +249,13 @@ inline void add_scene_options(CLI::App& app, scene_options_text& text) {
                    "the part may be off its nominal placement by |t_i| <= T_i metres and a rotation of at most ROT "
                    "radians about the datum: every VALID box holds for every such placement")
         ->type_name("TX,TY,TZ,ROT");
+    app.add_option("--part-axis", text.part_axis,
+                   "with --part-tolerance: ROT turns the part about this direction only (a fixture plate's normal, "
+                   "e.g. 0,0,1), so it slides and turns on the plate without tipping into it")
+        ->type_name("NX,NY,NZ");
+    app.add_option("--part-tilt", text.part_tilt,
+                   "with --part-axis: the part may also tip by at most TILT radians about any axis (default 0)")
+        ->type_name("TILT");
     app.add_option("--datum", text.datum, "the point the part rotates about (metres, part frame after --scale and --part-pose; "
                                           "default: the part's centroid); needs --part-tolerance")
         ->type_name("X,Y,Z");
@@ -358,9 +368,25 @@ inline scene_arguments parse_scene_options(const scene_options_text& text, const
     for (const auto& r : text.keep_out) s.regions.keep_out.push_back(parse_region("--keep-out", r));
     if (!text.datum.empty() && text.part_tolerance.empty())
         throw usage_error("--datum " + text.datum + ": needs --part-tolerance (a datum alone moves nothing)");
+    if (!text.part_axis.empty() && text.part_tolerance.empty())
+        throw usage_error("--part-axis " + text.part_axis + ": needs --part-tolerance (an axis alone moves nothing)");
+    if (!text.part_tilt.empty() && text.part_axis.empty())
+        throw usage_error("--part-tilt " + text.part_tilt +
+                          ": needs --part-axis (without an axis, --part-tolerance's ROT is about any axis already)");
     if (!text.part_tolerance.empty()) {
         const auto v = parse_numbers<4>("--part-tolerance", text.part_tolerance, "TX,TY,TZ,ROT");
         certipose::placement_tolerance t{.translation = {v[0], v[1], v[2]}, .rotation = v[3]};
+        if (!text.part_axis.empty()) {
+            const auto n = parse_numbers<3>("--part-axis", text.part_axis, "NX,NY,NZ");
+            t.axis = Eigen::Vector3d(n[0], n[1], n[2]);
+            if (t.axis->isZero(0)) throw usage_error("--part-axis " + text.part_axis + ": the axis must not be 0,0,0");
+        }
+        if (!text.part_tilt.empty()) {
+            t.tilt = parse_number("--part-tilt", text.part_tilt, "TILT (radians)");
+            if (!(t.tilt >= 0) || !(t.tilt <= 1.5707963267948966))
+                throw usage_error("--part-tilt " + text.part_tilt + ": must be in [0, pi/2] radians" +
+                                  (t.tilt > 1.5707963267948966 && t.tilt <= 90 ? " (degrees? give radians)" : ""));
+        }
         if (!text.datum.empty()) {
             const auto d = parse_numbers<3>("--datum", text.datum, "X,Y,Z");
             t.datum = Eigen::Vector3d(d[0], d[1], d[2]);

@@ -197,7 +197,8 @@ struct motion {
 };
 
 /// A motion the tolerance admits. `extreme`: every translation at ±T_i and the rotation at ROT
-/// (shrunk by 1e-9 so that rounding of the motion itself cannot step outside the tolerance).
+/// (shrunk by 1e-9 so that rounding of the motion itself cannot step outside the tolerance). With
+/// an axis: a turn about it by up to ±ROT, then a tilt by up to TILT about a random axis.
 inline motion draw_motion(const resolved_placement& tol, std::mt19937& rng, bool extreme) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::normal_distribution<double> g;
@@ -208,6 +209,12 @@ inline motion draw_motion(const resolved_placement& tol, std::mt19937& rng, bool
         m.t[i] = tol.translation[static_cast<std::size_t>(i)] * shrink * (extreme ? (u(rng) < 0 ? -1.0 : 1.0) : u(rng));
     Eigen::Vector3d axis(g(rng), g(rng), g(rng));
     axis.normalize();
+    if (tol.axis) {
+        const double turn = tol.rotation * shrink * (extreme ? (u(rng) < 0 ? -1.0 : 1.0) : u(rng));
+        const double tip = tol.tilt * shrink * (extreme ? 1.0 : std::abs(u(rng)));
+        m.R = Eigen::AngleAxisd(tip, axis).toRotationMatrix() * Eigen::AngleAxisd(turn, tol.axis->normalized()).toRotationMatrix();
+        return m;
+    }
     const double angle = tol.rotation * shrink * (extreme ? 1.0 : std::abs(u(rng)));
     m.R = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
     return m;
@@ -258,7 +265,8 @@ placed_report check_placed(const solve_result<I>& r, const triangle_mesh& mesh, 
         double far = 0;
         for (int k = 0; k < 8; ++k) far = std::max(far, (region.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)) - tol.datum).norm());
         Eigen::AlignedBox3d grown_region = region;
-        const double reach = std::max({tol.translation[0], tol.translation[1], tol.translation[2]}) + tol.rotation * far + 1e-9;
+        const double reach =
+            std::max({tol.translation[0], tol.translation[1], tol.translation[2]}) + (tol.rotation + tol.tilt) * far + 1e-9;
         grown_region.min().array() -= reach, grown_region.max().array() += reach;
         const auto part_near = part_rest.within(grown_region);
         const auto fixed_near = fixed_all.within(grown_region);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Real-world inputs on the programs (CTest: program.real_world): part placement tolerance
-# (--part-tolerance, --datum), lens distortion in the camera JSON and calibration files given as
+# (--part-tolerance, --datum, and the fixture form --part-axis, --part-tilt), lens distortion in the camera JSON and calibration files given as
 # --camera (OpenCV YAML, ROS camera_info) with --working-distance and --min-view-angle.
 #   real_world.sh SOLVE PART MESH CAMERA WORK_DIR [PLAN VERIFY]
 # Checked: the tolerance is recorded in task.placement_tolerance (datum: the part's centroid, or
@@ -50,7 +50,29 @@ EOF
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))["task"]["placement_tolerance"]["datum"]; assert d==[0,0,0], d' datum.json \
     || fail "solve: --datum 0,0,0 is not the datum recorded"
 
+# The fixture form: ROT about the plate's normal, a small tilt; recorded, and it keeps more than
+# the any-axis form of the same ROT (the part no longer tips by ROT).
+"$solve" "${solve_args[@]}" --out plate.json "${tol[@]}" --part-axis 0,0,2 --part-tilt 0.001 2>err ||
+    fail "solve with --part-axis failed: $(cat err)"
+python3 - tol.json plate.json <<'EOF' || fail "solve: the fixture form is not recorded, or keeps no more than any axis"
+import json, sys
+anyaxis, plate = (json.load(open(p)) for p in sys.argv[1:3])
+t = plate["task"]["placement_tolerance"]
+assert t["axis"] == [0, 0, 2] and t["tilt"] == 0.001 and t["rotation"] == 0.0175, t
+assert plate["stats"]["valid"] >= anyaxis["stats"]["valid"] > 0, (plate["stats"]["valid"], anyaxis["stats"]["valid"])
+EOF
+# Millimetres typed as metres: a warning naming the unit (the run still goes: nothing survives it).
+loud_args=(--mesh "$mesh" --facet "$facet" --camera "$camera" "${eps[@]}")
+"$solve" "${loud_args[@]}" --out mm.json --part-tolerance 2,2,2,0.01 --max-boxes 50 >out 2>err
+grep -q "warning: --part-tolerance lets the part slide by 2 m, .*is it in millimetres? It is read as metres: 0.002 for 2 mm" err ||
+    fail "no unit warning for --part-tolerance 2,2,2: $(cat err)"
+"$solve" "${loud_args[@]}" --out ok.json "${tol[@]}" >out 2>err
+grep -q "warning: --part-tolerance" err && fail "a tolerance warning for a plausible tolerance: $(cat err)"
 rm -f bad.json
+usage certipose-solve "--part-axis 0,0,1: needs --part-tolerance" "$solve" "${solve_args[@]}" --out bad.json --part-axis 0,0,1
+usage certipose-solve "--part-tilt 0.001: needs --part-axis" "$solve" "${solve_args[@]}" --out bad.json "${tol[@]}" --part-tilt 0.001
+usage certipose-solve "must not be 0,0,0" "$solve" "${solve_args[@]}" --out bad.json "${tol[@]}" --part-axis 0,0,0
+usage certipose-solve "degrees?" "$solve" "${solve_args[@]}" --out bad.json "${tol[@]}" --part-axis 0,0,1 --part-tilt 5
 usage certipose-solve "--part-tolerance 0.003,0.003,-1,0.02" "$solve" "${solve_args[@]}" --out bad.json --part-tolerance 0.003,0.003,-1,0.02
 usage certipose-solve "--part-tolerance 1,2,3" "$solve" "${solve_args[@]}" --out bad.json --part-tolerance 1,2,3
 usage certipose-solve "degrees?" "$solve" "${solve_args[@]}" --out bad.json --part-tolerance 0,0,0,20

@@ -50,39 +50,68 @@ placement_tolerance issue_tolerance() { return {.translation = {0.003, 0.003, 0.
 
 TEST_CASE("placement reach: every camera position in the part frame and every moved vertex is inside the grown boxes") {
     std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    // 200 random boxes and facets, 50 admitted motions each (every other one extreme).
+    const auto sample = [&](const resolved_placement& tol) {
+        std::size_t checked = 0;
+        for (int trial = 0; trial < 200; ++trial) {
+            position_box<I> p;
+            for (std::size_t i = 0; i < 3; ++i) {
+                const double a = -1 + 2 * u(rng), w = 0.2 * u(rng);
+                p[i] = I(a, a + w);
+            }
+            const position_box<I> q = camera_reach(p, tol);
+            const std::array<Eigen::Vector3d, 3> v{Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)),
+                                                   Eigen::Vector3d(u(rng), u(rng), u(rng))};
+            const auto r = facet_reach<I>(v, tol);
+            for (int k = 0; k < 50; ++k) {
+                const motion m = draw_motion(tol, rng, k % 2 == 0);
+                Eigen::Vector3d x;
+                for (int i = 0; i < 3; ++i) x[i] = lower(p[static_cast<std::size_t>(i)]) + u(rng) * width(p[static_cast<std::size_t>(i)]);
+                const Eigen::Vector3d back = m.R.transpose() * (x - m.c - m.t) + m.c;  // M⁻¹ x
+                for (std::size_t i = 0; i < 3; ++i) CHECK(contains(q[i], back[static_cast<Eigen::Index>(i)]));
+                for (const auto& y : v)
+                    for (std::size_t i = 0; i < 3; ++i)
+                        CHECK(std::abs(m(y)[static_cast<Eigen::Index>(i)] - y[static_cast<Eigen::Index>(i)]) <= r[i]);
+                ++checked;
+            }
+        }
+        return checked;
+    };
     const resolved_placement tol = resolve({.translation = {0.003, 0.001, 0.005}, .rotation = 0.035, .datum = Eigen::Vector3d(0.1, -0.2, 0.05)},
                                            Eigen::Vector3d::Zero());
     CHECK(tol.datum == Eigen::Vector3d(0.1, -0.2, 0.05));
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::size_t checked = 0;
-    for (int trial = 0; trial < 200; ++trial) {
-        position_box<I> p;
-        for (std::size_t i = 0; i < 3; ++i) {
-            const double a = -1 + 2 * u(rng), w = 0.2 * u(rng);
-            p[i] = I(a, a + w);
-        }
-        const position_box<I> q = camera_reach(p, tol);
-        const std::array<Eigen::Vector3d, 3> v{Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)),
-                                               Eigen::Vector3d(u(rng), u(rng), u(rng))};
-        const auto r = facet_reach<I>(v, tol);
-        for (int k = 0; k < 50; ++k) {
-            const motion m = draw_motion(tol, rng, k % 2 == 0);
-            Eigen::Vector3d x;
-            for (int i = 0; i < 3; ++i) x[i] = lower(p[static_cast<std::size_t>(i)]) + u(rng) * width(p[static_cast<std::size_t>(i)]);
-            const Eigen::Vector3d back = m.R.transpose() * (x - m.c - m.t) + m.c;  // M⁻¹ x
-            for (std::size_t i = 0; i < 3; ++i) CHECK(contains(q[i], back[static_cast<Eigen::Index>(i)]));
-            for (const auto& y : v)
-                for (std::size_t i = 0; i < 3; ++i) CHECK(std::abs(m(y)[static_cast<Eigen::Index>(i)] - y[static_cast<Eigen::Index>(i)]) <= r[i]);
-            ++checked;
-        }
+    CHECK(sample(tol) == 10000);
+    // The fixture form: a turn about a tilted axis and a small tip.
+    const resolved_placement fixture = resolve({.translation = {0.002, 0.001, 0.0005}, .rotation = 0.03,
+                                                .axis = Eigen::Vector3d(0.2, -0.1, 1.0), .tilt = 0.002,
+                                                .datum = Eigen::Vector3d(0.1, -0.2, 0.05)},
+                                               Eigen::Vector3d::Zero());
+    CHECK(sample(fixture) == 10000);
+    {
+        // About z with no tilt: z reaches only T_z, x and y the turn across; any-axis: every axis the whole turn.
+        const resolved_placement plate = resolve({.translation = {0.002, 0.002, 0.0}, .rotation = 0.01, .axis = Eigen::Vector3d(0, 0, 1)},
+                                                 Eigen::Vector3d::Zero());
+        const resolved_placement any = resolve({.translation = {0.002, 0.002, 0.0}, .rotation = 0.01}, Eigen::Vector3d::Zero());
+        const std::array<Eigen::Vector3d, 3> high{Eigen::Vector3d(0.1, 0, 0.3), Eigen::Vector3d(0.1, 0.01, 0.3),
+                                                  Eigen::Vector3d(0.11, 0, 0.3)};
+        const auto rp = facet_reach<I>(high, plate), ra = facet_reach<I>(high, any);
+        CHECK(rp[2] == 0.0);  // exactly: a facet resting on the plate must not reach into it
+        CHECK(ra[2] > 0.003);  // 0.01 rad at ~0.32 m
+        CHECK(rp[0] < ra[0]);
+        CHECK(rp[0] <= 0.002 + 0.01 * 0.1101);
     }
-    CHECK(checked == 10000);
     // Bad values are refused, naming the field.
     const placement_tolerance negative{.translation = {0.001, -0.001, 0}}, degrees{.rotation = 2.0},
         not_a_number{.rotation = std::nan("")};
     CHECK_THROWS_WITH_AS(negative.validate(), doctest::Contains("translation along y must be >= 0"), certipose::invalid_argument);
     CHECK_THROWS_WITH_AS(degrees.validate(), doctest::Contains("got 2 (degrees? give radians)"), certipose::invalid_argument);
     CHECK_THROWS_AS(not_a_number.validate(), certipose::invalid_argument);
+    const placement_tolerance tilt_alone{.rotation = 0.01, .tilt = 0.001}, zero_axis{.rotation = 0.01, .axis = Eigen::Vector3d::Zero()},
+        tilt_degrees{.rotation = 0.01, .axis = Eigen::Vector3d::UnitZ(), .tilt = 3.0};
+    CHECK_THROWS_WITH_AS(tilt_alone.validate(), doctest::Contains("a tilt goes with an axis"), certipose::invalid_argument);
+    CHECK_THROWS_WITH_AS(zero_axis.validate(), doctest::Contains("finite non-zero direction"), certipose::invalid_argument);
+    CHECK_THROWS_WITH_AS(tilt_degrees.validate(), doctest::Contains("(degrees? give radians)"), certipose::invalid_argument);
 }
 
 TEST_CASE("placement: a run without the tolerance fails the moved-part check, one with it passes (featuretype, facet 3262)") {
@@ -205,6 +234,101 @@ TEST_CASE("placement with a fixed occluder: the fixture plate stays while the pa
         CHECK(rep.violations == 0);
         checked += rep.valid_boxes;
     }
+    CHECK(checked > 0);
+}
+
+TEST_CASE("placement, fixture form: the part slides, turns about the plate's normal and tips a little, the plate stays") {
+    // The tolerance of a part on a fixture plate (--part-axis 0,0,1 --part-tilt): ±3 mm across
+    // the plate, ±0.02 rad about its normal, 1 mrad of tip. The facet of interest and the three
+    // lowest side facets certified under it (down to 0.5 mm over the plate, where the any-axis
+    // form needs 4 mm), completed and budget-stopped, sampled against motions of that form (box
+    // corners against extreme ones) with the plate in place.
+    const triangle_mesh plate = read_mesh(std::string(CERTIPOSE_SOURCE_DIR) + "/examples/data/fixture_plate.off");
+    const std::array<triangle_mesh, 1> fixed{plate};
+    inspection_task task{.min_view_angle = 0.35};
+    task.placement = placement_tolerance{.translation = {0.003, 0.003, 0.0}, .rotation = 0.02,
+                                         .axis = Eigen::Vector3d::UnitZ(), .tilt = 0.001};
+    const case_solver solver(part().mesh, calibrated(thin_lens_camera(design_camera_parameters())), task,
+                             {.occluders = fixed});
+    REQUIRE(solver.placement());
+    REQUIRE(solver.placement()->axis);
+    std::vector<std::size_t> facets{part().facet_of_interest}, sides;
+    for (std::size_t i = 0; i < part().mesh.num_faces(); ++i)
+        if (std::abs(part().mesh.facet(i).normal.z()) < 0.1 && part().mesh.facet(i).bbox.min().z() > 0.0005) sides.push_back(i);
+    std::sort(sides.begin(), sides.end(), [&](std::size_t a, std::size_t b) {
+        return part().mesh.facet(a).bbox.min().z() < part().mesh.facet(b).bbox.min().z();
+    });
+    for (std::size_t i : sides) {
+        if (facets.size() == 4) break;
+        if (solver.solve(i, {.position_eps = 0.1, .orientation_eps = 0.38}).stats.valid > 0) facets.push_back(i);
+    }
+    REQUIRE(facets.size() == 4);
+    MESSAGE("lowest side facets certified under the fixture form: " << facets[1] << " (z from "
+                                                                     << part().mesh.facet(facets[1]).bbox.min().z() << " m), "
+                                                                     << facets[2] << ", " << facets[3]);
+    std::size_t checked = 0;
+    std::uint32_t seed = 91;
+    for (std::size_t facet : facets)
+        for (const std::size_t budget : {std::size_t{0}, std::size_t{300}}) {
+            solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
+            if (budget) o.max_boxes = budget;
+            const auto r = solver.solve(facet, o);
+            const auto rep = check_placed(r, part().mesh, solver.camera(), solver.range(), task.min_view_angle, *solver.placement(),
+                                          fixed, 1, 2, seed++, 60);
+            MESSAGE("facet " << facet << std::string(budget ? " (budget-stopped)" : "") << ": " << r.stats.valid << " VALID, " << rep.samples
+                             << " poses, " << rep.violations << " violations");
+            CHECK(rep.violations == 0);
+            checked += rep.valid_boxes;
+        }
+    CHECK(checked > 0);
+}
+
+TEST_CASE("placement, fixture form without tilt: side facets resting on the plate keep boxes, sight lines ending on it") {
+    // Sliding and turning on the plate only (no tilt, no motion along its normal): a facet that
+    // rests on the plate is not moved into it, so its sight lines may end where the plate's top
+    // touches it (sight_region_clear lets a triangle touch the targets' side, the camera strictly
+    // beyond). The lowest side facets, those reaching down to z = 0 among them, completed and
+    // budget-stopped, sampled with the plate in place; the any-axis form gets none of them.
+    const triangle_mesh plate = read_mesh(std::string(CERTIPOSE_SOURCE_DIR) + "/examples/data/fixture_plate.off");
+    const std::array<triangle_mesh, 1> fixed{plate};
+    inspection_task task{.min_view_angle = 0.35}, any_axis = task;
+    task.placement = placement_tolerance{.translation = {0.002, 0.002, 0.0}, .rotation = 0.01, .axis = Eigen::Vector3d::UnitZ()};
+    any_axis.placement = placement_tolerance{.translation = {0.002, 0.002, 0.0}, .rotation = 0.01};
+    const auto camera = calibrated(thin_lens_camera(design_camera_parameters()));
+    const case_solver solver(part().mesh, camera, task, {.occluders = fixed});
+    const case_solver any_solver(part().mesh, camera, any_axis, {.occluders = fixed});
+    std::vector<std::size_t> resting;
+    for (std::size_t i = 0; i < part().mesh.num_faces(); ++i)
+        if (std::abs(part().mesh.facet(i).normal.z()) < 0.1 && part().mesh.facet(i).bbox.min().z() == 0.0) resting.push_back(i);
+    REQUIRE(!resting.empty());
+    const solve_options o{.position_eps = 0.1, .orientation_eps = 0.38};
+    std::vector<std::size_t> kept;
+    std::size_t any_kept = 0;
+    for (std::size_t i : resting) {
+        if (kept.size() == 3) break;
+        if (solver.solve(i, o).stats.valid > 0) {
+            kept.push_back(i);
+            any_kept += any_solver.solve(i, o).stats.valid > 0;
+        }
+    }
+    MESSAGE(resting.size() << " side facets rest on the plate; certified under the fixture form: " << kept.size()
+                           << " of the first tried, under any axis: " << any_kept);
+    REQUIRE(kept.size() == 3);
+    CHECK(any_kept == 0);
+    std::size_t checked = 0;
+    std::uint32_t seed = 131;
+    for (std::size_t facet : kept)
+        for (const std::size_t budget : {std::size_t{0}, std::size_t{300}}) {
+            solve_options b = o;
+            if (budget) b.max_boxes = budget;
+            const auto r = solver.solve(facet, b);
+            const auto rep = check_placed(r, part().mesh, solver.camera(), solver.range(), task.min_view_angle, *solver.placement(),
+                                          fixed, 2, 2, seed++, 60);
+            MESSAGE("facet " << facet << std::string(budget ? " (budget-stopped)" : "") << ": " << r.stats.valid << " VALID, "
+                             << rep.samples << " poses, " << rep.violations << " violations");
+            CHECK(rep.violations == 0);
+            checked += rep.valid_boxes;
+        }
     CHECK(checked > 0);
 }
 

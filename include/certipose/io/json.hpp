@@ -568,18 +568,23 @@ inline camera_input read_camera(const json& j, const std::string& path, const st
     return out;
 }
 
-/// "placement_tolerance": {"translation": [tx, ty, tz], "rotation": r, "datum": [x, y, z] | null}
-/// of a task object (pose/placement_tolerance.hpp); absent or null: none. Values are validated
+/// "placement_tolerance": {"translation": [tx, ty, tz], "rotation": r, "axis": [nx, ny, nz]
+/// (optional), "tilt": t (optional, with an axis), "datum": [x, y, z] | null} of a task object (pose/placement_tolerance.hpp); absent or null: none. Values are validated
 /// and errors name the JSON path ("task.placement_tolerance.rotation").
 inline std::optional<placement_tolerance> placement_from_json(const json& task, const std::string& path) {
     const json* v = find(task, "placement_tolerance");
     if (!v || v->is_null()) return std::nullopt;
     const std::string here = child(path, "placement_tolerance");
     require_object(*v, here);
-    reject_unknown(*v, here, {"translation", "rotation", "datum"}, "placement_tolerance");
+    reject_unknown(*v, here, {"translation", "rotation", "axis", "tilt", "datum"}, "placement_tolerance");
     placement_tolerance t;
     t.translation = as_numbers<3>(require(*v, here, "translation", "3 numbers (metres)"), child(here, "translation"));
     t.rotation = required_number(*v, here, "rotation");
+    if (const json* a = find(*v, "axis"); a && !a->is_null()) {
+        const auto n = as_numbers<3>(*a, child(here, "axis"));
+        t.axis = Eigen::Vector3d(n[0], n[1], n[2]);
+    }
+    if (const json* tilt = find(*v, "tilt"); tilt && !tilt->is_null()) t.tilt = required_number(*v, here, "tilt");
     if (const json* d = find(*v, "datum"); d && !d->is_null()) {
         const auto a = as_numbers<3>(*d, child(here, "datum"));
         t.datum = Eigen::Vector3d(a[0], a[1], a[2]);
@@ -597,6 +602,10 @@ inline void put_placement(ordered_json& task, const std::optional<placement_tole
     ordered_json p;
     p["translation"] = numbers(t->translation, "task.placement_tolerance.translation");
     p["rotation"] = finite(t->rotation, "task.placement_tolerance.rotation");
+    if (t->axis) {
+        p["axis"] = numbers(std::array<double, 3>{t->axis->x(), t->axis->y(), t->axis->z()}, "task.placement_tolerance.axis");
+        p["tilt"] = finite(t->tilt, "task.placement_tolerance.tilt");
+    }
     p["datum"] = t->datum ? numbers(std::array<double, 3>{t->datum->x(), t->datum->y(), t->datum->z()},
                                     "task.placement_tolerance.datum")
                           : ordered_json(nullptr);

@@ -158,6 +158,9 @@ inline void check_part_run(const part_summary& run, const part_summary& here, co
             if (!t) return "none";
             std::string s = text(t->translation[0]) + "," + text(t->translation[1]) + "," + text(t->translation[2]) + "," +
                             text(t->rotation);
+            if (t->axis)
+                s += " turning about " + text(t->axis->x()) + "," + text(t->axis->y()) + "," + text(t->axis->z()) + " tilting " +
+                     text(t->tilt);
             if (t->datum) s += " about " + text(t->datum->x()) + "," + text(t->datum->y()) + "," + text(t->datum->z());
             return s;
         };

@@ -15,6 +15,13 @@
 // needs no exactness: separation along ANY vector is a proof), so "clear" is a proof and a
 // rounding doubt or a triangle close to H answers "not proven". Conservative: a triangle beside
 // the hull but not separable along these axes is counted as a possible blocker.
+//
+// Touching is allowed on one condition. Constraint 6 is about the OPEN segment from the camera c
+// to a point q of the facet. If along n the triangle lies at or below t_hi, every target q at or
+// above it (n·q ≥ t_hi) and the camera box strictly above (n·c > t_hi), every point of the open
+// segment has n·x > t_hi: the triangle cannot meet it even where it touches the facet's region.
+// That is a facet resting on a fixture plate that the tolerance does not move into it (a turn
+// about the plate's normal): its sight lines end on the plate's top face, but never cross it.
 #pragma once
 
 #include <array>
@@ -104,10 +111,15 @@ bool sight_region_clear(const position_box<I>& p, const std::array<Eigen::Vector
         hull_box.min()[i] = lo, hull_box.max()[i] = hi;
     }
     for (const auto& t : fixed.triangles) {
-        // The coordinate axes: disjoint bounding boxes (compared strictly: touching is not clear).
+        // The coordinate axes: disjoint bounding boxes, or touching only where the targets are
+        // with the camera box strictly beyond (see the header comment).
         bool apart = false;
-        for (Eigen::Index i = 0; i < 3 && !apart; ++i)
-            apart = t.bbox.max()[i] < hull_box.min()[i] || hull_box.max()[i] < t.bbox.min()[i];
+        for (Eigen::Index i = 0; i < 3 && !apart; ++i) {
+            const auto k = static_cast<std::size_t>(i);
+            apart = t.bbox.max()[i] < hull_box.min()[i] || hull_box.max()[i] < t.bbox.min()[i] ||
+                    (t.bbox.max()[i] <= hull_box.min()[i] && t.bbox.max()[i] < lower(p[k])) ||
+                    (hull_box.max()[i] <= t.bbox.min()[i] && upper(p[k]) < t.bbox.min()[i]);
+        }
         if (apart) continue;
         for (const Eigen::Vector3d& n : {t.normal, facet_normal}) {
             const auto a = detail::fixed::box_support(p, n);
@@ -119,7 +131,7 @@ bool sight_region_clear(const position_box<I>& p, const std::array<Eigen::Vector
                 t_lo = std::min(t_lo, lower(s));
                 t_hi = std::max(t_hi, upper(s));
             }
-            if (t_hi < h_lo || h_hi < t_lo) {
+            if (t_hi < h_lo || h_hi < t_lo || (t_hi <= h_lo && t_hi < a[0]) || (h_hi <= t_lo && a[1] < t_lo)) {
                 apart = true;
                 break;
             }
