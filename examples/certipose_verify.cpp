@@ -120,8 +120,9 @@ int verify_program::run(const arguments& args, const interruption& signals) {
     nlohmann::ordered_json report;
     report["format"] = "certipose-verify-report";
     report["version"] = certipose::detail::json_io::format_version;
-    report["mesh"] = {{"path", args.inputs.mesh.string()}, {"faces", mesh.num_faces()}, {"scale", args.inputs.scale}};
-    if (args.inputs.part_pose) report["mesh"]["pose"] = certipose::mesh_record_json({.pose = pose_record(args.inputs)})["pose"];
+    // As summary.json and PLAN.json write it, without a digest (none is compared against).
+    report["mesh"] = certipose::mesh_record_json(
+        {.path = args.inputs.mesh.string(), .faces = mesh.num_faces(), .scale = args.inputs.scale, .pose = pose_record(args.inputs)});
     certipose::detail::json_io::put_scene(report, in.extra.record);  // "occluders", "keep_in", "keep_out"
     // The placement tolerance every facet of "facets" is certified for (absent: nominal).
     if (input.task.placement) {
