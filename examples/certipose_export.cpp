@@ -1,15 +1,17 @@
 // certipose-export — a plan (PLAN.json of certipose-plan) in the formats a fitter, a robot cell,
 // a CAD tool and a person open: a fitter's CSV of nominal poses and certified tolerances (mm,
 // degrees), ROS/MoveIt constraints, a URDF (a whole <robot>, or with --snippet the cameras' links
-// to paste into one), a glTF 2.0 scene with a camera object per camera and a self-contained HTML
-// viewer.
+// to paste into one), a glTF 2.0 scene with a camera object per camera, a self-contained HTML
+// viewer and a printable installation sheet (HTML, one page per camera).
 //
-//   certipose-export PLAN.json --format csv|moveit|urdf|glb|html --out FILE
+//   certipose-export PLAN.json --format csv|moveit|urdf|glb|html|sheet --out FILE
 //                    [--mesh PART [--scale S] [--part-pose POSE]] [--parent-frame NAME] [--link optical|mount]
 //                    [--link-prefix PREFIX] [--robot-name NAME] [--snippet] [--title TEXT] [--quiet]
 //
-// glb and html draw the part, so they need --mesh (the plan's part; --scale and --part-pose
-// default to what the plan recorded, and the face count and digest must match). The output is written atomically and
+// glb, html and sheet draw the part, so they need --mesh (the plan's part; --scale and --part-pose
+// default to what the plan recorded, and the face count and digest must match); they draw the
+// plan's occluders too, read from the paths it records (one that cannot be read or has changed
+// is left out with a warning: a picture is not a certificate). The output is written atomically and
 // never over an input. Formats: docs/conventions.md#exports. Errors: one line
 // "certipose-export: ..." on stderr, exit 1 (bad input, write error) or 2 (bad command line);
 // SIGINT/SIGTERM exit 130/143 and write nothing.
@@ -23,6 +25,8 @@
 #include <certipose/io/plan_files.hpp>
 #include <certipose/io/plan_gltf.hpp>
 #include <certipose/io/plan_html.hpp>
+#include <certipose/io/plan_occluders.hpp>
+#include <certipose/io/plan_sheet.hpp>
 #include <certipose/io/scene_record.hpp>
 
 #include <CLI/CLI.hpp>
@@ -48,7 +52,8 @@ struct export_program {
     static constexpr const char* name = "certipose-export";
     static constexpr const char* description =
         "certipose-export: a plan's cameras as a fitter's CSV (mm, degrees), ROS/MoveIt constraints, a URDF, glTF "
-        "(.glb, with camera objects) or a self-contained HTML viewer (docs/conventions.md#exports).";
+        "(.glb, with camera objects), a self-contained HTML viewer or a printable installation sheet "
+        "(docs/conventions.md#exports).";
 
     struct options {
         std::string plan, format, out, mesh, scale, part_pose;
@@ -74,7 +79,7 @@ struct export_program {
 
     static void declare(CLI::App& app, options& text) {
         app.add_option("plan", text.plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
-        app.add_option("--format", text.format, "csv, moveit, urdf, glb or html")->type_name("FORMAT")->required();
+        app.add_option("--format", text.format, "csv, moveit, urdf, glb, html or sheet")->type_name("FORMAT")->required();
         app.add_option("--out", text.out, "the file to write")->type_name("FILE")->required();
         app.add_option("--mesh", text.mesh, "the plan's part (needed by glb and html): OFF, OBJ, PLY or STL")
             ->type_name("PART")
@@ -98,16 +103,17 @@ struct export_program {
             ->type_name("NAME");
         app.add_flag("--snippet", text.snippet,
                      "urdf: only the cameras' links and joints, to paste inside a <robot> that has --parent-frame");
-        app.add_option("--title", text.title, "html: the page title (default: the plan's file name)")->type_name("TEXT");
+        app.add_option("--title", text.title, "html and sheet: the page title (default: the plan's file name)")->type_name("TEXT");
         app.add_flag("--quiet,-q", text.quiet, "print nothing but errors");
     }
 
     static arguments check(const options& text) {
         arguments a;
         a.plan = text.plan, a.mesh = text.mesh, a.out = text.out, a.format = text.format, a.quiet = text.quiet;
-        if (a.format != "csv" && a.format != "moveit" && a.format != "urdf" && a.format != "glb" && a.format != "html")
-            throw usage_error("--format: expected csv, moveit, urdf, glb or html, got '" + a.format + "'");
-        const bool picture = a.format == "glb" || a.format == "html";
+        if (a.format != "csv" && a.format != "moveit" && a.format != "urdf" && a.format != "glb" && a.format != "html" &&
+            a.format != "sheet")
+            throw usage_error("--format: expected csv, moveit, urdf, glb, html or sheet, got '" + a.format + "'");
+        const bool picture = a.format == "glb" || a.format == "html" || a.format == "sheet";
         // An option the format does not use is a mistake worth naming, not something to ignore.
         const auto only_for = [&](const std::string& option, bool given, bool used, const char* formats) {
             if (given && !used) throw usage_error(option + " applies to " + formats + ", not --format " + a.format);
@@ -119,10 +125,10 @@ struct export_program {
                  "--format urdf and moveit");
         only_for("--robot-name", text.robot_name.has_value(), a.format == "urdf", "--format urdf");
         only_for("--snippet", text.snippet, a.format == "urdf", "--format urdf");
-        only_for("--title", text.title.has_value(), a.format == "html", "--format html");
-        only_for("--mesh", !text.mesh.empty(), picture, "--format glb and html");
-        only_for("--scale", !text.scale.empty(), picture, "--format glb and html");
-        only_for("--part-pose", !text.part_pose.empty(), picture, "--format glb and html");
+        only_for("--title", text.title.has_value(), a.format == "html" || a.format == "sheet", "--format html and sheet");
+        only_for("--mesh", !text.mesh.empty(), picture, "--format glb, html and sheet");
+        only_for("--scale", !text.scale.empty(), picture, "--format glb, html and sheet");
+        only_for("--part-pose", !text.part_pose.empty(), picture, "--format glb, html and sheet");
         if (text.parent_frame) a.parent_frame = *text.parent_frame;
         if (text.link) a.link = *text.link;
         if (text.link_prefix) a.link_prefix = *text.link_prefix;
@@ -180,7 +186,18 @@ std::string content(const arguments& args, const certipose::plan_document& plan)
         mismatch("mesh.faces", std::to_string(plan.mesh.faces), std::to_string(mesh.num_faces()));
     if (!plan.mesh.digest.empty() && plan.mesh.digest != certipose::mesh_digest(mesh))
         mismatch("mesh.digest", plan.mesh.digest, certipose::mesh_digest(mesh));
-    const std::string glb = certipose::plan_glb(mesh, plan);
+    // The occluders are inputs too: never write over one.
+    for (const auto& o : plan.scene.occluders) {
+        std::error_code ec;
+        if (fs::equivalent(o.path, args.out, ec))
+            throw certipose::invalid_argument("--out", "--out " + args.out.string() + " is the plan's occluder " + o.path +
+                                                           ": choose another file");
+    }
+    const certipose::plan_occluders occluders = certipose::read_plan_occluders(plan);
+    if (!args.quiet)
+        for (const auto& why : occluders.left_out) std::fprintf(stderr, "certipose-export: warning: %s\n", why.c_str());
+    if (args.format == "sheet") return certipose::plan_sheet(mesh, plan, {.title = args.title, .occluders = occluders.meshes});
+    const std::string glb = certipose::plan_glb(mesh, plan, occluders.meshes);
     if (args.format == "glb") return glb;
     if (certipose_viewer_script.empty())
         throw certipose::invalid_argument("format", "--format html: this build has no web viewer (it needs Node.js and "

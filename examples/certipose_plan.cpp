@@ -53,12 +53,20 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace {
+
+/// `v` with `decimals` decimals, for the summary lines.
+std::string fixed_text(double v, int decimals = 1) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v == 0 ? 0.0 : v);
+    return buf;
+}
 
 namespace fs = std::filesystem;
 using namespace certipose_program;
@@ -267,6 +275,7 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     popt.exact_seconds = args.exact;
     popt.threads = args.threads;
     if (args.all_candidates) popt.thinning.reset();
+    popt.occluders = extra.occluders;
     popt.stop = signals.token();
     if (progress) {
         popt.inspection_progress = [](std::size_t done, std::size_t all) {
@@ -296,6 +305,19 @@ int plan_program::run(const arguments& args, const interruption& signals) {
                     "at least %zu needed (%s bound)\n",
                     args.inputs.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
                     pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
+        // The shares above hold for every placement the tolerance admits: say which, beside them.
+        if (const auto& t = doc.task.placement; t && !t->none()) {
+            std::string how = "  certified for every placement of the part within ±" + fixed_text(1000 * t->translation[0]) +
+                              ", " + fixed_text(1000 * t->translation[1]) + ", " + fixed_text(1000 * t->translation[2]) +
+                              " mm and " + fixed_text(t->rotation * 180 / std::numbers::pi, 2) + "°";
+            if (t->axis)
+                how += " about (" + fixed_text(t->axis->x(), 3) + ", " + fixed_text(t->axis->y(), 3) + ", " +
+                       fixed_text(t->axis->z(), 3) + ")" +
+                       (t->tilt > 0 ? ", tipped by up to " + fixed_text(t->tilt * 180 / std::numbers::pi, 2) + "°" : "");
+            else
+                how += " about any axis";
+            std::printf("%s (--part-tolerance; without it, more of the part may be coverable)\n", how.c_str());
+        }
         std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu inspected %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,
                     made.inspected, made.seconds_inspection, made.seconds_choice, made.exact ? " (GLPK exact)" : "", doc.uncovered.size());

@@ -23,6 +23,7 @@
 #include "certipose/occlusion/cgal_aabb_occlusion.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_boolean_occlusion.hpp"  // IWYU pragma: export
 #include "certipose/occlusion/cgal_mesh_survey.hpp"  // IWYU pragma: export
+#include "certipose/occlusion/cgal_resting_contact.hpp"  // IWYU pragma: export
 #include "certipose/solver/occlusion_choice.hpp"  // IWYU pragma: export
 #include "certipose/verify/point_check.hpp"  // IWYU pragma: export
 

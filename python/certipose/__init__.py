@@ -455,15 +455,19 @@ class Plan:
         self._doc.write(_os.fspath(path))
 
     def export(self, format: str, path: Union[None, str, _os.PathLike] = None, *, mesh=None, scale: Optional[float] = None,
-               parent_frame: str = "world", link: str = "optical", title: str = "certipose plan") -> Optional[bytes]:
+               parent_frame: str = "world", link: str = "optical", title: str = "certipose plan",
+               link_prefix: str = "camera_", robot_name: str = "certipose_cameras",
+               snippet: bool = False) -> Optional[bytes]:
         """The plan in certipose-export's formats (docs/conventions.md#exports): "csv", "moveit",
-        "urdf", "ply", "glb" or "html" (the last three draw the part: give ``mesh``, the plan's
-        part, or its file with the plan's scale by default). Returns the bytes, or writes them
-        atomically to ``path`` and returns None."""
+        "urdf", "ply", "glb", "html" or "sheet" (the last four draw the part: give ``mesh``, the
+        plan's part, or its file with the plan's scale by default). ``link_prefix`` names the
+        cameras' links in "urdf" and "moveit"; ``robot_name`` and ``snippet`` are "urdf"'s, as
+        certipose-export's --link-prefix, --robot-name and --snippet. Returns the bytes, or writes
+        them atomically to ``path`` and returns None."""
         m = None
         if mesh is not None:
             m = _mesh(mesh, self._dict["mesh"]["scale"] if scale is None else scale)
-        data = self._doc.export(format, m, parent_frame, link, title)
+        data = self._doc.export(format, m, parent_frame, link, title, link_prefix, robot_name, snippet)
         if path is None:
             return data
         _core.write_atomically(_os.fspath(path), data)

@@ -127,7 +127,8 @@ class Plan:
     def save(self, path: _Path) -> None: ...
     def export(self, format: str, path: Optional[_Path] = None, *, mesh: Optional[_MeshSpec] = None,
                scale: Optional[float] = None, parent_frame: str = "world", link: str = "optical",
-               title: str = "certipose plan") -> Optional[bytes]: ...
+               title: str = "certipose plan", link_prefix: str = "camera_", robot_name: str = "certipose_cameras",
+               snippet: bool = False) -> Optional[bytes]: ...
 
 class Solver:
     mesh: Mesh

@@ -31,6 +31,8 @@
 #include <certipose/io/plan_files.hpp>
 #include <certipose/io/plan_gltf.hpp>
 #include <certipose/io/plan_html.hpp>
+#include <certipose/io/plan_occluders.hpp>
+#include <certipose/io/plan_sheet.hpp>
 #include <certipose/io/step_path.hpp>
 #if defined(CERTIPOSE_PYTHON_READ_STEP)
 #include <certipose/io/read_step.hpp>
@@ -335,7 +337,7 @@ public:
         else if (semantics == "soup") sem = cp::mesh_semantics::soup;
         else if (semantics != "auto")
             throw cp::invalid_argument("mesh_semantics", "mesh_semantics must be \"auto\", \"solid\" or \"soup\", got \"" + semantics + "\"");
-        std::vector<cp::triangle_mesh> extra;
+        std::vector<cp::triangle_mesh>& extra = occluders_;
         for (const auto& [m, path, scale] : occluders) {
             if (!m) throw cp::invalid_argument("occluders", "Solver: an occluder is None");
             extra.push_back(*m);
@@ -360,6 +362,8 @@ public:
 
     /// The occluders and camera regions, as the documents record them.
     const cp::scene_record& scene() const { return scene_; }
+    /// The occluder meshes themselves (make_plan names the facets resting on them).
+    const std::vector<cp::triangle_mesh>& occluders() const { return occluders_; }
     const cp::triangle_mesh& mesh() const { return *mesh_; }
     std::shared_ptr<const cp::triangle_mesh> mesh_ptr() const { return mesh_; }
     const cp::camera_task& camera() const { return input_; }
@@ -405,6 +409,7 @@ private:
     cp::camera_task input_;
     std::string occlusion_;
     cp::scene_record scene_;
+    std::vector<cp::triangle_mesh> occluders_;
     any_part part_;
 };
 
@@ -782,6 +787,7 @@ plan_holder make_plan_py(const solver& s, py::object source, std::size_t per_fac
     const std::vector<cp::candidate_box<I>> candidates = pool.boxes();
     std::atomic<std::size_t> done{0}, all{0};
     cp::plan_options opt = base;
+    opt.occluders = s.occluders();
     opt.inspection_progress = [&](std::size_t d, std::size_t a) {
         done = d, all = a;
         return true;
@@ -808,16 +814,20 @@ plan_holder make_plan_py(const solver& s, py::object source, std::size_t per_fac
 
 /// A plan's export (certipose-export's formats; docs/conventions.md#exports) as bytes.
 py::bytes export_plan(const cp::plan_document& plan, const std::string& format, std::shared_ptr<cp::triangle_mesh> mesh,
-                      const std::string& parent_frame, const std::string& link, const std::string& title) {
+                      const std::string& parent_frame, const std::string& link, const std::string& title,
+                      const std::string& link_prefix, const std::string& robot_name, bool snippet) {
     if (format == "csv") return cp::plan_csv(plan);
-    if (format == "urdf") return cp::plan_urdf(plan, {.parent_frame = parent_frame});
+    if (format == "urdf")
+        return cp::plan_urdf(plan, {.parent_frame = parent_frame, .link_prefix = link_prefix, .robot_name = robot_name,
+                                    .snippet = snippet});
     if (format == "moveit") {
         if (link != "optical" && link != "mount")
             throw cp::invalid_argument("link", "link must be \"optical\" or \"mount\", got \"" + link + "\"");
         return cp::plan_moveit_yaml(plan, {.frame_id = parent_frame,
-                                           .link = link == "mount" ? cp::constrained_link::mount : cp::constrained_link::optical_frame});
+                                           .link = link == "mount" ? cp::constrained_link::mount : cp::constrained_link::optical_frame,
+                                           .link_prefix = link_prefix});
     }
-    if (format == "ply" || format == "glb" || format == "html") {
+    if (format == "ply" || format == "glb" || format == "html" || format == "sheet") {
         if (!mesh) throw cp::invalid_argument("mesh", "export: format \"" + format + "\" draws the part: give the plan's mesh");
         if (mesh->num_faces() != plan.mesh.faces)
             throw cp::invalid_argument("mesh.faces", "export: the plan's mesh.faces (" + std::to_string(plan.mesh.faces) +
@@ -826,14 +836,19 @@ py::bytes export_plan(const cp::plan_document& plan, const std::string& format, 
             throw cp::invalid_argument("mesh.digest", "export: the plan's mesh.digest (" + plan.mesh.digest + ") is not this mesh's (" +
                                                           cp::mesh_digest(*mesh) + ")");
         if (format == "ply") return cp::plan_ply_text(*mesh, plan);
-        const std::string glb = cp::plan_glb(*mesh, plan);
+        // As certipose-export: the plan's occluders are drawn when they can be read as recorded.
+        const cp::plan_occluders occluders = cp::read_plan_occluders(plan);
+        for (const auto& why : occluders.left_out)
+            if (PyErr_WarnEx(PyExc_UserWarning, why.c_str(), 1) != 0) throw py::error_already_set();
+        if (format == "sheet") return py::bytes(cp::plan_sheet(*mesh, plan, {.title = title, .occluders = occluders.meshes}));
+        const std::string glb = cp::plan_glb(*mesh, plan, occluders.meshes);
         if (format == "glb") return py::bytes(glb);
         if (certipose_viewer_script.empty())
             throw cp::invalid_argument("format", "export: format \"html\": this build has no web viewer (it needs Node.js and "
                                                  "`npm ci` in web/ when configuring; scripts/install-deps.sh does both)");
         return cp::plan_html(plan, glb, mesh->num_faces(), {certipose_viewer_template, certipose_viewer_script}, title);
     }
-    throw cp::invalid_argument("format", "export: format must be \"csv\", \"moveit\", \"urdf\", \"ply\", \"glb\" or \"html\", got \"" +
+    throw cp::invalid_argument("format", "export: format must be \"csv\", \"moveit\", \"urdf\", \"ply\", \"glb\", \"html\" or \"sheet\", got \"" +
                                              format + "\"");
 }
 
@@ -1134,10 +1149,12 @@ PYBIND11_MODULE(_core, m) {
         .def("to_json", [](const plan_holder& p) { return cp::json_text(cp::plan_to_json(p.doc)); })
         .def("write", [](const plan_holder& p, const std::string& path) { write_atomically(path, cp::json_text(cp::plan_to_json(p.doc))); })
         .def("export", [](const plan_holder& p, const std::string& format, std::shared_ptr<cp::triangle_mesh> mesh,
-                          const std::string& parent_frame, const std::string& link, const std::string& title) {
-            return export_plan(p.doc, format, std::move(mesh), parent_frame, link, title);
+                          const std::string& parent_frame, const std::string& link, const std::string& title,
+                          const std::string& link_prefix, const std::string& robot_name, bool snippet) {
+            return export_plan(p.doc, format, std::move(mesh), parent_frame, link, title, link_prefix, robot_name, snippet);
         }, py::arg("format"), py::arg("mesh") = nullptr, py::arg("parent_frame") = "world", py::arg("link") = "optical",
-           py::arg("title") = "certipose plan")
+           py::arg("title") = "certipose plan", py::arg("link_prefix") = "camera_", py::arg("robot_name") = "certipose_cameras",
+           py::arg("snippet") = false)
         .def_readonly("seconds_inspection", &plan_holder::seconds_inspection)
         .def_readonly("seconds_choice", &plan_holder::seconds_choice)
         .def_readonly("exact", &plan_holder::exact);

@@ -365,7 +365,7 @@ certipose::plan_document sample_plan() {
     p.coverage = {0.0024691357802469134, 0.003, 0.16, 2, "lp", {0.0012345678901234567, 0.0024691357802469134}};
     p.uncovered = {{0, certipose::uncovered_reason::never_visible}, {3, certipose::uncovered_reason::boundary_only},
                    {4, certipose::uncovered_reason::not_selected}, {5, certipose::uncovered_reason::not_solved},
-                   {6, certipose::uncovered_reason::not_finished}};
+                   {6, certipose::uncovered_reason::not_finished}, {7, certipose::uncovered_reason::rests_on_occluder}};
     return p;
 }
 
@@ -457,7 +457,7 @@ TEST_CASE("PLAN.json: bad documents are errors naming the file and the JSON path
            "PLAN.json: camera.mount_offset: expected an array of 3 numbers, got an array of 2");
     expect([](auto& j) { j["uncovered"][1]["reason"] = "shy"; }, "uncovered[1].reason",
            "PLAN.json: uncovered[1].reason: unknown reason \"shy\" (expected never visible, only in BOUNDARY boxes at this "
-           "eps, not selected, not solved or solve stopped early)");
+           "eps, not selected, not solved, solve stopped early or rests on an occluder)");
     expect([](auto& j) { j["coverage"].erase("lower_bound_method"); }, "coverage.lower_bound_method",
            "PLAN.json: coverage.lower_bound_method: missing required field (a string)");
     // Files: missing is an io_error; JSON errors name the file.

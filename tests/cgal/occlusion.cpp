@@ -19,6 +19,7 @@
 #include <certipose/io/read_mesh.hpp>
 #include <certipose/occlusion/cgal_aabb_occlusion.hpp>
 #include <certipose/occlusion/cgal_boolean_occlusion.hpp>
+#include <certipose/occlusion/cgal_resting_contact.hpp>  // this program's one definition
 #include <certipose/occlusion/concept.hpp>
 #include <certipose/occlusion/no_occlusion.hpp>
 

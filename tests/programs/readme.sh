@@ -5,7 +5,9 @@
 # The work directory mirrors a checkout: examples/ is the source's, build/release is this build
 # tree, so the README's paths run unchanged. Then it checks what the README promises: every file
 # exists, no camera of the plan is below the fixture plate's top, the verify report certifies the
-# plan's facets, and the HTML page passes the browser test (its screenshot is docs/viewer.png's).
+# plan's facets, the underside on the plate is named as resting on it, and the HTML page and the
+# installation sheet pass their browser tests (their screenshots are docs/viewer.png and
+# docs/sheet.png: copy them from WORK_DIR after a change that shows).
 set -uo pipefail
 src=$1 bin=$2 work=$3 node=$4
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -18,7 +20,7 @@ awk '/<!-- readme-walkthrough: begin -->/{on=1; next} /<!-- readme-walkthrough: 
 bash -euo pipefail walkthrough.sh > out 2> err || fail "the README's walkthrough failed: $(tail -5 err)"
 
 for f in facet900.json facet900.ply part-run/summary.json part-run/boxes.cpbx plan.json verify.json \
-         plan.csv plan.yaml plan.urdf plan.glb plan.html; do
+         plan.csv plan.yaml plan.urdf plan.glb plan.html sheet.html; do
     [ -s "$f" ] || fail "the walkthrough did not write $f"
 done
 grep -q '"occluders"' plan.json || fail "plan.json does not record the occluder"
@@ -34,4 +36,14 @@ print("readme: %d cameras, lowest box z %.3f m" % (len(low), min(low)))
 PY
 "$node" "$src/tests/web/validate_glb.mjs" plan.glb >/dev/null || fail "plan.glb does not validate"
 "$node" "$src/tests/web/viewer_test.mjs" plan.html viewer.png > viewer.log 2>&1 || fail "viewer: $(tail -5 viewer.log)"
-echo "readme: the walkthrough ran; viewer screenshot: $work/viewer.png"
+# The underside resting on the plate is named for what it is, not left to a finer eps.
+python3 - <<'PY' || exit 1
+import json, sys
+plan = json.load(open("plan.json"))
+resting = [u["facet"] for u in plan["uncovered"] if u["reason"] == "rests on an occluder"]
+if len(resting) < 100: sys.exit("FAIL: only %d facets rest on the plate" % len(resting))
+print("readme: %d facets rest on the plate" % len(resting))
+PY
+grep -q 'rests on an occluder' plan.html || fail "the viewer does not carry the uncovered facets' reasons"
+"$node" "$src/tests/web/sheet_test.mjs" sheet.html plan.csv sheet.png > sheet.log 2>&1 || fail "sheet: $(tail -8 sheet.log)"
+echo "readme: the walkthrough ran; screenshots: $work/viewer.png, $work/sheet.png"

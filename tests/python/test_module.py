@@ -482,18 +482,31 @@ def test_verify_is_certipose_verify(solver, program_plan, tmp_path):
     assert any(p.get("tolerance") for p in exact["poses"])
 
 
-@pytest.mark.parametrize("fmt", ["csv", "urdf", "moveit", "glb", "html"])
+@pytest.mark.parametrize("fmt", ["csv", "urdf", "moveit", "glb", "html", "sheet"])
 def test_export_is_certipose_export(fmt, program_plan, tmp_path):
     out = tmp_path / f"plan.{fmt}"
     args = [EXPORT, str(program_plan), "--format", fmt, "--out", str(out), "-q"]
-    if fmt in ("glb", "html"):
-        args += ["--mesh", MESH] + (["--title", "t"] if fmt == "html" else [])
+    if fmt in ("glb", "html", "sheet"):
+        args += ["--mesh", MESH] + (["--title", "t"] if fmt in ("html", "sheet") else [])
     subprocess.run(args, check=True)
     plan = certipose.read_plan(program_plan)
-    mine = plan.export(fmt, mesh=MESH if fmt in ("glb", "html") else None, title="t")
+    mine = plan.export(fmt, mesh=MESH if fmt in ("glb", "html", "sheet") else None, title="t")
     assert mine == out.read_bytes()
     plan.export(fmt, tmp_path / "again", mesh=MESH, title="t")
     assert (tmp_path / "again").read_bytes() == mine
+
+
+@pytest.mark.parametrize("fmt,options,flags", [
+    ("urdf", {"link_prefix": "cell1_cam", "robot_name": "cell1"}, ["--link-prefix", "cell1_cam", "--robot-name", "cell1"]),
+    ("urdf", {"snippet": True}, ["--snippet"]),
+    ("moveit", {"link_prefix": "cell1_cam"}, ["--link-prefix", "cell1_cam"]),
+])
+def test_export_options_are_certipose_export_flags(fmt, options, flags, program_plan, tmp_path):
+    out = tmp_path / "out"
+    subprocess.run([EXPORT, str(program_plan), "--format", fmt, "--out", str(out), "-q"] + flags, check=True)
+    mine = certipose.read_plan(program_plan).export(fmt, **options)
+    assert mine == out.read_bytes()
+    assert mine != certipose.read_plan(program_plan).export(fmt)  # the option changed something
 
 
 def test_plan_and_export_bad_input(solver, part, program_plan, tmp_path):

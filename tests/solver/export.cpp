@@ -10,6 +10,7 @@
 #include <certipose/io/moveit_yaml.hpp>
 #include <certipose/io/plan_export.hpp>
 #include <certipose/io/plan_gltf.hpp>
+#include <certipose/io/plan_sheet.hpp>
 #include <certipose/pose/quaternion.hpp>
 
 #include <tiny_gltf.h>
@@ -314,4 +315,100 @@ TEST_CASE("export: URDF roll-pitch-yaw rebuild the nominal rotation, also next t
         CAPTURE(pitch);
         CHECK((rebuild(urdf_rpy(r)) - r).cwiseAbs().maxCoeff() < 1e-12);
     }
+}
+
+/// How many times `what` occurs in `s`.
+static std::size_t occurrences(const std::string& s, const std::string& what) {
+    std::size_t k = 0;
+    for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++k;
+    return k;
+}
+
+TEST_CASE("export: the glTF scene draws the occluders, the camera regions, the axes and each axis cone") {
+    const auto& f = fixture();
+    plan_document plan = f.plan;
+    plan.scene.regions.keep_out.push_back(camera_region::box({-0.1, -0.1, -0.1}, {0.1, 0.1, 0.0}));
+    plan.scene.regions.keep_in.push_back(camera_region::sphere({0, 0, 0}, 2.0));
+    plan.uncovered = {{0, uncovered_reason::rests_on_occluder}, {1, uncovered_reason::not_solved}};
+    const triangle_mesh plate({{-1, -1, -0.01}, {1, -1, -0.01}, {1, 1, -0.01}, {-1, 1, -0.01}},
+                              {face_indices{0, 1, 2}, face_indices{0, 2, 3}});
+    const std::vector<triangle_mesh> occluders{plate};
+    const std::string glb = plan_glb(part().mesh, plan, occluders);
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    REQUIRE(loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(glb.data()),
+                                        static_cast<unsigned int>(glb.size())));
+    const auto node = [&](const std::string& name) {
+        const auto it = std::find_if(model.nodes.begin(), model.nodes.end(), [&](const tinygltf::Node& n) { return n.name == name; });
+        return it == model.nodes.end() ? nullptr : &*it;
+    };
+    const tinygltf::Node* occ = node("occluder 0");
+    REQUIRE(occ != nullptr);
+    const auto& occ_prim = model.meshes[static_cast<std::size_t>(occ->mesh)].primitives[0];
+    CHECK(model.accessors[static_cast<std::size_t>(occ_prim.attributes.at("POSITION"))].count == 6);
+    CHECK(model.materials[static_cast<std::size_t>(occ_prim.material)].alphaMode == "BLEND");
+    REQUIRE(node("keep-out 0") != nullptr);
+    REQUIRE(node("keep-in 0") != nullptr);
+    const auto lines = [&](const tinygltf::Node* n) {
+        const auto& prim = model.meshes[static_cast<std::size_t>(n->mesh)].primitives[0];
+        CHECK(prim.mode == TINYGLTF_MODE_LINE);
+        return model.accessors[static_cast<std::size_t>(prim.indices)].count / 2;
+    };
+    CHECK(lines(node("keep-out 0")) == 12);       // a box's edges
+    CHECK(lines(node("keep-in 0")) == 3 * 48);    // a sphere's three great circles
+    REQUIRE(node("axes") != nullptr);
+    CHECK(node("axes")->children.size() == 3);
+    REQUIRE(node("axis z") != nullptr);
+    // A cone for each camera whose certified axis cone is not a point.
+    for (const auto& e : camera_exports(plan))
+        CHECK((node("camera " + std::to_string(e.index) + " cone") != nullptr) == (e.axis.cone > 0));
+    // Facet 0 (rests on an occluder) is darker than facet 1 (not solved); both grey.
+    const auto& part_prim = model.meshes[0].primitives[0];
+    const auto& acc = model.accessors[static_cast<std::size_t>(part_prim.attributes.at("COLOR_0"))];
+    const auto& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
+    const auto* colours = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + acc.byteOffset);
+    const auto by = plan_first_cameras(part().mesh.num_faces(), plan);
+    if (by[0] >= plan.cameras.size() && by[1] >= plan.cameras.size()) CHECK(colours[0] < colours[9]);
+}
+
+TEST_CASE("export: the installation sheet has a page per camera with the CSV's numbers and a view") {
+    const auto& f = fixture();
+    const std::string sheet = plan_sheet(part().mesh, f.plan, {.title = "cell <1>"});
+    CHECK(occurrences(sheet, "<section class=\"page\"") == f.plan.cameras.size());
+    CHECK(occurrences(sheet, "<svg class=\"view\"") == f.plan.cameras.size());
+    CHECK(occurrences(sheet, "cell &lt;1&gt;") >= 1);  // the title is escaped
+    CHECK(occurrences(sheet, "<script") == 0);         // nothing to run, nothing to fetch
+    CHECK(occurrences(sheet, "http://") == occurrences(sheet, "http://www.w3.org/2000/svg"));
+    // Each page's numbers are the CSV's row: the same text, cell by cell.
+    std::istringstream csv(plan_csv(f.plan));
+    std::string line;
+    std::getline(csv, line);
+    std::vector<std::string> header;
+    for (std::istringstream h(line); std::getline(h, line, ',');) header.push_back(line);
+    std::size_t rows = 0;
+    while (std::getline(csv, line)) {
+        std::vector<std::string> cells;
+        for (std::istringstream r(line); std::getline(r, line, ',');) cells.push_back(line);
+        const std::string page_start = "<section class=\"page\" data-camera=\"" + cells[0] + "\">";
+        const auto from = sheet.find(page_start);
+        REQUIRE(from != std::string::npos);
+        const std::string page = sheet.substr(from, sheet.find("</section>", from) - from);
+        std::size_t fields = 0;
+        for (std::size_t c = 1; c < header.size() && c < cells.size(); ++c) {
+            const std::string cell = "data-field=\"" + header[c] + "\">";
+            const auto at = page.find(cell);
+            if (at == std::string::npos) continue;
+            ++fields;
+            const auto v = at + cell.size();
+            CHECK(page.substr(v, page.find('<', v) - v) == cells[c]);
+        }
+        CHECK(fields >= 20);  // position, mount, quaternion, tolerances, aim, facets, area
+        CHECK(occurrences(page, "<polygon") > 10);  // the view draws facets
+        ++rows;
+    }
+    CHECK(rows == f.plan.cameras.size());
+    plan_document bad = f.plan;
+    bad.cameras[0].facets.push_back(part().mesh.num_faces());
+    CHECK_THROWS_AS(plan_sheet(part().mesh, bad), out_of_range);
 }

@@ -12,7 +12,8 @@
 //      certifies and checks that #pick names each facet's cameras as listed in the scene JSON's
 //      facet_cameras (if a click lands on another facet, it checks that facet's entry instead, but
 //      at least one click must hit the facet it aimed at);
-//   4. clicking a camera in the side panel selects it.
+//   4. clicking a camera in the side panel selects it;
+//   5. the summary counts the uncovered facets by the plan's reasons (a picked uncovered facet says why).
 // It prints "viewer_test: N passed, M failed" and exits 1 on any failure (2 on bad usage), with
 // the reason. Run `npm ci` in web/ first: playwright-core is resolved from web/node_modules.
 //
@@ -119,13 +120,25 @@ try {
       cameras: (s.cameras || []).map((c, i) => ({ index: Number.isInteger(c.index) ? c.index : i, name: c.name })),
       facetCount: window.certipose.facetCount,
       background: window.certipose.background,
+      uncovered: s.uncovered && typeof s.uncovered === 'object' ? s.uncovered : {},
+      summary: document.getElementById('summary').textContent,
     };
   });
+  const reasonOf = new Map();
+  for (const [reason, facets] of Object.entries(scene.uncovered)) for (const f of facets) reasonOf.set(f, reason);
   const nameOf = new Map(scene.cameras.map((c) => [c.index, typeof c.name === 'string' ? c.name : `camera ${c.index}`]));
   const expectedText = (f) => {
     const ks = scene.facetCameras[f] || [];
-    return ks.length ? `facet ${f}: ${ks.map((k) => nameOf.get(k) ?? `camera ${k}`).join(', ')}` : `facet ${f}: no camera certifies it`;
+    if (ks.length) return `facet ${f}: ${ks.map((k) => nameOf.get(k) ?? `camera ${k}`).join(', ')}`;
+    return `facet ${f}: no camera certifies it${reasonOf.has(f) ? ` (${reasonOf.get(f)})` : ''}`;
   };
+  // The summary counts the uncovered facets by the plan's reasons.
+  const reasons = Object.entries(scene.uncovered);
+  if (reasons.every(([reason, facets]) => scene.summary.includes(`${facets.length} ${reason}`))) {
+    pass(`the summary names the uncovered facets' reasons (${reasons.length} reason${reasons.length === 1 ? '' : 's'})`);
+  } else {
+    failCheck(`the summary does not count the uncovered facets by reason: ${scene.summary}`);
+  }
   if (!Array.isArray(scene.facetCameras) || scene.facetCameras.length !== scene.facetCount) {
     failCheck(`facet_cameras has ${scene.facetCameras?.length} entries but the part has ${scene.facetCount} facets`);
   } else {

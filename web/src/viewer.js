@@ -103,11 +103,12 @@ function findNodes(root) {
     const name = obj.userData && obj.userData.name;
     if (typeof name !== 'string') return;
     if (name === 'part' && !part) part = obj;
-    const m = /^camera (\d+) (frustum|tolerance)$/.exec(name);
+    const m = /^camera (\d+) (frustum|tolerance|cone)$/.exec(name);
     if (m) {
       const k = Number(m[1]);
       if (!cameraLines.has(k)) cameraLines.set(k, { frustum: [], tolerance: [] });
-      cameraLines.get(k)[m[2]].push(obj);
+      // The axis cone is part of the camera's tolerance: it fades and shows with the box.
+      cameraLines.get(k)[m[2] === 'cone' ? 'tolerance' : m[2]].push(obj);
     }
   });
   let partMesh = null;
@@ -130,6 +131,16 @@ async function main() {
 
   const cameras = Array.isArray(sceneData.cameras) ? sceneData.cameras : [];
   const facetCameras = Array.isArray(sceneData.facet_cameras) ? sceneData.facet_cameras : [];
+  // Why an uncovered facet is uncovered (PLAN.json's reasons), for the picker and the summary.
+  const whyUncovered = new Map();
+  const reasonCounts = [];
+  if (sceneData.uncovered && typeof sceneData.uncovered === 'object') {
+    for (const [reason, facets] of Object.entries(sceneData.uncovered)) {
+      if (!Array.isArray(facets)) continue;
+      for (const f of facets) whyUncovered.set(f, reason);
+      reasonCounts.push(`${facets.length} ${reason}`);
+    }
+  }
   const cameraByIndex = new Map();
   cameras.forEach((c, i) => cameraByIndex.set(Number.isInteger(c.index) ? c.index : i, c));
   // A camera's "colour" in the scene JSON: [r, g, b], sRGB, 0-255 (or 0-1).
@@ -169,6 +180,17 @@ async function main() {
   root.updateMatrixWorld(true);
 
   const { partMesh, cameraLines } = findNodes(root);
+  // The part frame's axes start at its origin, often inside the part: draw them over it.
+  root.traverse((obj) => {
+    const name = obj.userData && obj.userData.name;
+    if (typeof name !== 'string' || !/^axis [xyz]$/.test(name)) return;
+    obj.traverse((o) => {
+      if (!o.isLine) return;
+      o.material = o.material.clone();
+      o.material.depthTest = false;
+      o.renderOrder = 5;
+    });
+  });
   if (!partMesh) throw new Error('the glTF scene has no mesh node named "part"');
   // The part frame in world coordinates: its +Z is up, whatever the glTF root does (see above).
   const partRotation = new Quaternion();
@@ -318,6 +340,11 @@ async function main() {
     const n = facetsOf.get(k).size;
     let d = `${n} facet${n === 1 ? '' : 's'}`;
     if (c && Array.isArray(c.position)) d += ` · at (${c.position.map(formatNumber).join(', ')}) m`;
+    const t = c && c.tolerance;
+    if (t && Array.isArray(t.half_mm)) {
+      d += ` · ±(${t.half_mm.map((v) => v.toFixed(1)).join(', ')}) mm, axis within ${Number(t.cone_deg).toFixed(2)}°,`
+        + ` roll ±${Number(t.roll_deg).toFixed(2)}°`;
+    }
     detail.textContent = d;
     text.append(name, detail);
     li.append(swatch, text);
@@ -329,7 +356,8 @@ async function main() {
   }
   const covered = facetCameras.filter((ks) => Array.isArray(ks) && ks.length > 0).length;
   document.getElementById('summary').textContent =
-    `${facetCount} facets, ${covered} certified by some camera; ${sortedCameras.length} camera${sortedCameras.length === 1 ? '' : 's'}`;
+    `${facetCount} facets, ${covered} certified by some camera; ${sortedCameras.length} camera${sortedCameras.length === 1 ? '' : 's'}`
+    + (reasonCounts.length ? `. Uncovered: ${reasonCounts.join(', ')}` : '');
 
   function selectCamera(k) {
     selectedCamera = k === null || k === undefined || !facetsOf.has(k) ? null : k;
@@ -350,7 +378,7 @@ async function main() {
     const ks = Array.isArray(facetCameras[f]) ? facetCameras[f] : [];
     pickDiv.textContent = ks.length
       ? `facet ${f}: ${ks.map(cameraName).join(', ')}`
-      : `facet ${f}: no camera certifies it`;
+      : `facet ${f}: no camera certifies it${whyUncovered.has(f) ? ` (${whyUncovered.get(f)})` : ''}`;
     const p = outlineGeometry.getAttribute('position');
     for (let i = 0; i < 3; i++) p.setXYZ(i, position.getX(3 * f + i), position.getY(3 * f + i), position.getZ(3 * f + i));
     p.needsUpdate = true;

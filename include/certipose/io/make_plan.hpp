@@ -23,6 +23,7 @@
 #include "certipose/io/box_store.hpp"
 #include "certipose/io/plan_export.hpp"
 #include "certipose/io/plan_files.hpp"
+#include "certipose/occlusion/resting_contact.hpp"
 #include "certipose/part/part_solver.hpp"
 
 #include <algorithm>
@@ -36,6 +37,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stop_token>
 #include <string>
 #include <tuple>
@@ -214,6 +216,9 @@ struct plan_options {
     /// Skip the candidates whose facet an inspected candidate already certifies
     /// (coverage/thinning.hpp); none: C(B) of every candidate.
     std::optional<thinning_options> thinning = thinning_options{};
+    /// The scene's fixed occluders (as given to the solver): an uncovered facet lying face to face
+    /// on one is reported as resting on it (occlusion/resting_contact.hpp), not as a matter of ε.
+    std::span<const triangle_mesh> occluders{};
     std::stop_token stop{};
     /// C(B) progress (candidates done, all), from a worker thread; false stops the plan.
     std::function<bool(std::size_t, std::size_t)> inspection_progress{};
@@ -401,6 +406,14 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
             else why = uncovered_reason::never_visible;
         }
         doc.uncovered.push_back({f, why});
+    }
+    if (!options.occluders.empty()) {
+        std::vector<char> ask(num_faces, 0);
+        for (const auto& u : doc.uncovered)
+            ask[u.facet] = u.reason == uncovered_reason::boundary_only || u.reason == uncovered_reason::never_visible;
+        const auto resting = resting_on_occluders(solver.part(), options.occluders, ask);
+        for (auto& u : doc.uncovered)
+            if (resting[u.facet]) u.reason = uncovered_reason::rests_on_occluder;
     }
     return report;
 }

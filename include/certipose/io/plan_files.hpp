@@ -52,6 +52,9 @@ enum class uncovered_reason {
     not_selected,   ///< certified by some candidate, but the plan stopped before taking one
     not_solved,     ///< not in the run's facet selection
     not_finished,   ///< a budget, deadline or cancellation stopped its solve before any box
+    /// no VALID box, and it lies face to face on an occluder (a part resting on its fixture):
+    /// a finer ε will not help (occlusion/resting_contact.hpp)
+    rests_on_occluder,
 };
 
 inline constexpr const char* to_string(uncovered_reason r) noexcept {
@@ -61,6 +64,7 @@ inline constexpr const char* to_string(uncovered_reason r) noexcept {
         case uncovered_reason::not_selected: return "not selected";
         case uncovered_reason::not_solved: return "not solved";
         case uncovered_reason::not_finished: return "solve stopped early";
+        case uncovered_reason::rests_on_occluder: return "rests on an occluder";
     }
     return "?";
 }
@@ -161,7 +165,7 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
 
 inline std::optional<uncovered_reason> uncovered_reason_from_string(std::string_view s) {
     for (auto r : {uncovered_reason::never_visible, uncovered_reason::boundary_only, uncovered_reason::not_selected,
-                   uncovered_reason::not_solved, uncovered_reason::not_finished})
+                   uncovered_reason::not_solved, uncovered_reason::not_finished, uncovered_reason::rests_on_occluder})
         if (s == to_string(r)) return r;
     return std::nullopt;
 }
@@ -244,7 +248,7 @@ inline plan_document plan_from_json(const nlohmann::json& j, const std::string& 
             if (!reason)
                 fail(child(path, "reason"), "unknown reason \"" + name +
                                                 "\" (expected never visible, only in BOUNDARY boxes at this eps, not "
-                                                "selected, not solved or solve stopped early)");
+                                                "selected, not solved, solve stopped early or rests on an occluder)");
             r.reason = *reason;
             p.uncovered.push_back(r);
         }

@@ -5,7 +5,9 @@
 //
 // The page is the viewer template with three placeholders replaced: the bundled script, the
 // title, and the scene block {"title", "glb" (base64), "cameras": [{"index", "name", "position",
-// "quaternion", "facets", "colour"}], "facet_cameras": [[k, ...] per facet]} (docs/conventions.md#html).
+// "quaternion", "facets", "colour", "tolerance": {"half_mm", "cone_deg", "roll_deg"}}],
+// "facet_cameras": [[k, ...] per facet], "uncovered": {reason: [facet, ...]}}
+// (docs/conventions.md#html).
 // The scene JSON sits in a <script type="application/json"> element, so every "<" is escaped in it.
 #pragma once
 
@@ -89,16 +91,21 @@ inline std::string plan_html(const plan_document& plan, std::string_view glb, st
     std::vector<std::vector<std::size_t>> facet_cameras(num_faces);
     for (const auto& e : exports) {
         const rgb c = plan_camera_colour(e.index);
+        const fitter_camera fit = fitter_units(e, plan.cameras[e.index]);
         cameras.push_back({{"index", e.index},
                            {"name", "camera " + std::to_string(e.index)},
                            {"position", e.position},
                            {"quaternion", e.quaternion},
                            {"facets", plan.cameras[e.index].facets},
-                           {"colour", {c.r, c.g, c.b}}});
+                           {"colour", {c.r, c.g, c.b}},
+                           {"tolerance", {{"half_mm", fit.half_mm}, {"cone_deg", fit.axis_cone_deg}, {"roll_deg", fit.roll_deg}}}});
         for (std::size_t f : plan.cameras[e.index].facets) facet_cameras[f].push_back(e.index);
     }
     scene["cameras"] = std::move(cameras);
     scene["facet_cameras"] = facet_cameras;
+    auto uncovered = nlohmann::json::object();  // reason -> facets, so the picker can say why
+    for (const auto& u : plan.uncovered) uncovered[to_string(u.reason)].push_back(u.facet);
+    scene["uncovered"] = std::move(uncovered);
     // A title that is not UTF-8 (a file name, say) is shown with U+FFFD rather than refused.
     std::string json = scene.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     // Inside <script> the HTML parser looks for "</script" and "<!--" (which changes how it finds
