@@ -26,8 +26,11 @@ import numpy as _np
 from . import _core
 from ._errors import Error, FileError, GeometryError, InvalidArgument, MeshError, OutOfRange
 
+#: The package's version (the project's, as in pyproject.toml and CMakeLists.txt).
+__version__: str = _core.version
+
 __all__ = [
-    "Mesh", "Camera", "Solver", "Boxes", "FacetResult", "PartResult", "PartIterator", "Progress", "Coverage", "Plan",
+    "__version__", "Mesh", "Camera", "Solver", "Boxes", "FacetResult", "PartResult", "PartIterator", "Progress", "Coverage", "Plan",
     "solve_facet", "solve_part", "iter_part", "plan", "verify", "export", "camera", "read_part", "read_plan", "read_step",
     "Error", "InvalidArgument", "OutOfRange", "MeshError", "FileError", "GeometryError",
     "BOUNDARY_REASONS",
@@ -35,6 +38,54 @@ __all__ = [
 
 Mesh = _core.Mesh
 Camera = _core.Camera
+Mesh.__doc__ = """A triangle mesh of a part, in metres: ``Mesh(vertices, faces)`` from an (N, 3) float array and an
+(M, 3) array of integer vertex indices, or ``Mesh.read(path, scale=1.0, weld_tolerance=None)`` from
+OFF, OBJ, PLY, STL or STEP. Read-only ``vertices``, ``faces``, ``areas``, ``num_faces``,
+``num_vertices``, ``digest`` (the fingerprint the programs record); ``facet(i)`` describes facet i."""
+Camera.__doc__ = """A camera and its inspection task; make one with ``certipose.camera(spec)`` from a dict in the
+camera JSON's shape, our camera JSON file or an OpenCV/ROS calibration file. ``to_dict()`` gives
+the dict back; ``model`` and ``distance_range`` (metres) describe it."""
+_mesh_read = _core.Mesh.read
+
+
+def _read_mesh(path: Union[str, _os.PathLike], scale: float = 1.0, weld_tolerance: Optional[float] = None) -> "Mesh":
+    """The mesh in ``path`` (OFF, OBJ, PLY, STL; STEP in metres at the default tessellation), its
+    coordinates multiplied by ``scale``; ``weld_tolerance`` merges vertices closer than it (a
+    triangle soup from STL). ``path`` is a str or any os.PathLike."""
+    if not isinstance(path, (str, _os.PathLike)):
+        raise InvalidArgument(f"path: expected a str or os.PathLike, got {type(path).__name__}", "path")
+    return _mesh_read(_os.fspath(path), float(scale), weld_tolerance)
+
+
+Mesh.read = staticmethod(_read_mesh)
+Mesh.__repr__ = lambda self: (f"<certipose.Mesh {self.num_faces} facets, {self.num_vertices} vertices, "
+                              f"digest {self.digest}>")
+Camera.__repr__ = lambda self: (f"<certipose.Camera {self.model}, in focus from {self.distance_range[0]:.4g} m to "
+                                f"{self.distance_range[1]:.4g} m>")
+
+
+def _json_default(value: Any) -> Any:
+    """numpy scalars and arrays in a camera dict, as the plain numbers json writes."""
+    if isinstance(value, _np.generic):
+        return value.item()
+    if isinstance(value, _np.ndarray):
+        return value.tolist()
+    raise TypeError(f"a camera dict holds {type(value).__name__} {value!r}, which is not a number, string, list or dict")
+
+
+def _regions(field: str, regions: Any) -> list:
+    """Camera regions as the programs' text: a "box:..." / "sphere:..." string, a ("box", xmin, ...)
+    tuple, or a sequence of these."""
+    def one(r: Any, where: str) -> str:
+        if isinstance(r, str):
+            return r
+        if isinstance(r, (tuple, list)) and r and isinstance(r[0], str):
+            return r[0] + ":" + ",".join(repr(float(x)) for x in r[1:])
+        raise InvalidArgument(f"{where}: expected \"box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\", \"sphere:X,Y,Z,R\" or a tuple "
+                              f"(\"box\", ...) / (\"sphere\", ...), got {r!r}", where)
+    if isinstance(regions, str) or (isinstance(regions, tuple) and regions and isinstance(regions[0], str)):
+        regions = [regions]
+    return [one(r, f"{field}[{i}]") for i, r in enumerate(regions)]
 
 #: The reasons a BOUNDARY box was left undecided, in the order of their codes.
 BOUNDARY_REASONS: tuple = tuple(_core.boundary_reasons)
@@ -44,7 +95,11 @@ _REASON_NAMES = _np.array(list(BOUNDARY_REASONS) + [""])  # code -1 (VALID) inde
 
 def _camera_from_dict(spec: dict) -> "Camera":
     """A camera from a dict in the camera JSON's shape (docs/io.md)."""
-    return _core.Camera.from_json(_json.dumps(spec, allow_nan=False), "camera")
+    try:
+        text = _json.dumps(spec, allow_nan=False, default=_json_default)
+    except TypeError as e:
+        raise InvalidArgument(f"camera: {e}", "camera") from None
+    return _core.Camera.from_json(text, "camera")
 
 
 Camera.from_dict = staticmethod(_camera_from_dict)
@@ -82,8 +137,11 @@ def _mesh(m: Union["Mesh", str, _os.PathLike, Any], scale: float = 1.0) -> "Mesh
         return _core.Mesh.read(_os.fspath(m), scale)
     if hasattr(m, "vertices") and hasattr(m, "faces"):  # trimesh.Trimesh, or anything shaped like it
         return _core.Mesh(_np.asarray(m.vertices) * scale, _np.asarray(m.faces))
-    if hasattr(m, "vertices") and hasattr(m, "triangles"):  # open3d.geometry.TriangleMesh
+    if hasattr(m, "vertices") and hasattr(m, "triangles"):  # open3d.geometry.TriangleMesh (float64)
         return _core.Mesh(_np.asarray(m.vertices) * scale, _np.asarray(m.triangles))
+    if hasattr(m, "vertex") and hasattr(m, "triangle"):  # open3d.t.geometry.TriangleMesh (float32 by default)
+        v = m.vertex.positions.numpy()
+        return _core.Mesh(v if scale == 1.0 else v * v.dtype.type(scale), m.triangle.indices.numpy())
     raise InvalidArgument(f"mesh: expected a certipose.Mesh, a file path or a mesh with vertices and faces, "
                           f"got {type(m).__name__}", "mesh")
 
@@ -247,8 +305,8 @@ class Solver:
             else:
                 scene.append((_mesh(o), f"<occluder {i}>", 1.0))
         try:
-            self._core = _core.Solver(self.mesh, self.camera, occlusion, mesh_semantics, scene, list(keep_in),
-                                      list(keep_out))
+            self._core = _core.Solver(self.mesh, self.camera, occlusion, mesh_semantics, scene, _regions("keep_in", keep_in),
+                                      _regions("keep_out", keep_out))
         except Error as e:  # the occlusion names extra meshes "occluder 0", ...: say which file each is
             if scene and "occluder" in str(e):
                 e.args = (str(e) + " (" + ", ".join(f"occluder {i}: {o[1]}" for i, o in enumerate(scene)) + ")",)
@@ -263,6 +321,10 @@ class Solver:
             _warnings.warn(f"certipose: occlusion reads the scene as a triangle soup ({s['why_not_solid'] or 'as asked'}): "
                            f"{s['bodies']} bodies ({s['closed_bodies']} closed){', ' + found if found else ''}",
                            stacklevel=2)
+
+    def __repr__(self) -> str:
+        return (f"<certipose.Solver {self.mesh.num_faces} facets, {self.camera.model} camera, "
+                f"{self.occlusion} occlusion>")
 
     @property
     def occlusion(self) -> str:

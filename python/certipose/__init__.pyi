@@ -10,6 +10,7 @@ _CameraSpec = Union["Camera", dict, _Path]
 _MeshSpec = Union["Mesh", _Path, Any]  # a Mesh, a file, or anything with .vertices and .faces (trimesh, Open3D)
 
 BOUNDARY_REASONS: Tuple[str, ...]
+__version__: str
 
 class Error(Exception): ...
 class InvalidArgument(Error, ValueError):
@@ -27,7 +28,7 @@ class Mesh:
     """A triangle mesh, validated (finite coordinates, indices in range, no degenerate face)."""
     def __init__(self, vertices: npt.ArrayLike, faces: npt.ArrayLike) -> None: ...
     @staticmethod
-    def read(path: str, scale: float = 1.0, weld_tolerance: Optional[float] = None) -> "Mesh": ...
+    def read(path: Union[str, os.PathLike], scale: float = 1.0, weld_tolerance: Optional[float] = None) -> "Mesh": ...
     @property
     def num_faces(self) -> int: ...
     @property
@@ -139,7 +140,8 @@ class Solver:
     def __init__(self, mesh: _MeshSpec, camera_spec: _CameraSpec, *, occlusion: str = "aabb",
                  mesh_semantics: str = "auto", scale: float = 1.0,
                  working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
-                 occluders: Sequence[Any] = (), keep_in: Sequence[str] = (), keep_out: Sequence[str] = ()) -> None: ...
+                 occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+                 keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = ()) -> None: ...
     @property
     def occlusion(self) -> str: ...
     def solve_facet(self, facet: int, *, position_eps: float = 0.1, orientation_eps: float = 0.38,

@@ -1027,9 +1027,30 @@ PYBIND11_MODULE(_core, m) {
     py::register_exception_translator(&translate);
 
     py::class_<cp::triangle_mesh, std::shared_ptr<cp::triangle_mesh>>(m, "Mesh")
-        .def(py::init([](py::array_t<double, py::array::c_style | py::array::forcecast> v,
-                         py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> f) {
-                 return std::const_pointer_cast<cp::triangle_mesh>(mesh_from_arrays(std::move(v), std::move(f)));
+        .def(py::init([](const py::object& vertices, const py::object& faces) {
+                 const py::array v = py::array::ensure(vertices), f = py::array::ensure(faces);
+                 if (!v) throw cp::invalid_argument("vertices", "Mesh: vertices must be an (N, 3) array of numbers");
+                 if (!f) throw cp::invalid_argument("faces", "Mesh: faces must be an (M, 3) array of integer vertex indices");
+                 // Face indices are integers: a float array would be truncated in silence by a cast.
+                 const char kind = f.dtype().kind();
+                 if (f.size() > 0 && kind != 'i' && kind != 'u')
+                     throw cp::invalid_argument("faces", "Mesh: faces must be integer vertex indices, got an array of dtype " +
+                                                             py::str(f.dtype()).cast<std::string>());
+                 const char vkind = v.dtype().kind();
+                 if (vkind != 'f' && vkind != 'i' && vkind != 'u')
+                     throw cp::invalid_argument("vertices", "Mesh: vertices must be numbers, got an array of dtype " +
+                                                                py::str(v.dtype()).cast<std::string>());
+                 if (v.dtype().is(py::dtype::of<float>()) &&
+                     PyErr_WarnEx(PyExc_UserWarning,
+                                  "Mesh: the vertices are float32; they are widened to float64 as they are, so the "
+                                  "boxes are those of the float32 part (about 1e-8 m from a double-precision file's), "
+                                  "and the digest is not the file's: pass float64 vertices (e.g. "
+                                  "numpy.asarray(mesh.vertices, dtype=float) from the source's own doubles)",
+                                  1) != 0)
+                     throw py::error_already_set();
+                 using doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+                 using indices = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+                 return std::const_pointer_cast<cp::triangle_mesh>(mesh_from_arrays(doubles::ensure(v), indices::ensure(f)));
              }),
              py::arg("vertices"), py::arg("faces"))
         .def_static(
@@ -1170,6 +1191,7 @@ PYBIND11_MODULE(_core, m) {
     m.def("run_record", &run_record_json, py::arg("solver"));
     m.def("write_atomically", [](const std::string& path, py::bytes content) { write_atomically(path, std::string(content)); });
     m.attr("has_viewer") = !certipose_viewer_script.empty();
+    m.attr("version") = CERTIPOSE_VERSION;
 
     py::class_<part_run>(m, "PartRun")
         .def("__iter__", [](py::object self) { return self; })

@@ -94,6 +94,49 @@ def test_mesh_from_arrays_is_the_mesh_read(solver):
     assert np.array_equal(a.bounds, b.bounds) and len(a) > 0
 
 
+def test_strict_inputs_get_our_errors(solver, tmp_path):
+    V, F = np.array(solver.mesh.vertices), np.array(solver.mesh.faces, dtype=np.int64)
+    # float face indices are refused, not truncated
+    with pytest.raises(certipose.InvalidArgument, match="faces must be integer vertex indices, got an array of dtype float64"):
+        certipose.Mesh(V, F + 0.7)
+    with pytest.raises(certipose.InvalidArgument, match="vertices must be numbers"):
+        certipose.Mesh(np.array([["a", "b", "c"]]), F[:0])
+    assert certipose.Mesh(V.tolist(), F.tolist()).digest == solver.mesh.digest  # plain lists are fine
+    # float32 vertices: a warning saying what it costs
+    with pytest.warns(UserWarning, match="float32"):
+        m32 = certipose.Mesh(V.astype(np.float32), F)
+    assert m32.num_faces == solver.mesh.num_faces
+    # os.PathLike wherever a path is taken
+    assert certipose.Mesh.read(pathlib.Path(MESH)).digest == certipose.Mesh.read(MESH).digest
+    with pytest.raises(certipose.InvalidArgument, match="path: expected a str or os.PathLike, got int"):
+        certipose.Mesh.read(3)
+    # numpy scalars and arrays in a camera dict
+    spec = json.loads(pathlib.Path(CAMERA).read_text())
+    numpyish = json.loads(json.dumps(spec), parse_float=np.float64, parse_int=np.int64)
+    assert certipose.camera(numpyish).to_dict() == certipose.camera(spec).to_dict()
+    with pytest.raises(certipose.InvalidArgument, match="camera: a camera dict holds object"):
+        certipose.camera({**spec, "task": object()})
+    # regions: one string, a tuple, or a list of either
+    one = certipose.Solver(MESH, CAMERA, keep_out="box:-10,-10,-10,10,10,0.3")
+    tup = certipose.Solver(MESH, CAMERA, keep_out=("box", -10, -10, -10, 10, 10, 0.3))
+    lst = certipose.Solver(MESH, CAMERA, keep_out=["box:-10,-10,-10,10,10,0.3"])
+    a, b, c = (s.solve_facet(21, **EPS) for s in (one, tup, lst))
+    assert np.array_equal(a.bounds, b.bounds) and np.array_equal(a.bounds, c.bounds)
+    full = solver.solve_facet(21, **EPS)
+    assert a.bounds.shape != full.bounds.shape or not np.array_equal(a.bounds, full.bounds)  # the region cut
+    with pytest.raises(certipose.InvalidArgument, match=r"keep_out\[0\]"):
+        certipose.Solver(MESH, CAMERA, keep_out=[3.0])
+
+
+def test_objects_say_what_they_are(solver):
+    assert certipose.__version__ == "0.1.0"
+    assert repr(solver.mesh).startswith(f"<certipose.Mesh {solver.mesh.num_faces} facets")
+    assert "in focus from" in repr(solver.camera)
+    assert repr(solver).startswith("<certipose.Solver ")
+    assert "integer vertex indices" in certipose.Mesh.__doc__
+    assert certipose.Camera.__doc__
+
+
 # ---- soundness: sampled poses of VALID boxes, checked in numpy -------------------------------
 
 def rotation(phi, gamma, beta):
