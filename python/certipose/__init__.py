@@ -32,6 +32,7 @@ __version__: str = _core.version
 __all__ = [
     "__version__", "Mesh", "Camera", "Solver", "Boxes", "FacetResult", "PartResult", "PartIterator", "Progress", "Coverage", "Plan",
     "solve_facet", "solve_part", "iter_part", "plan", "verify", "export", "camera", "read_part", "read_plan", "read_step",
+    "sample_part", "example_camera", "available_formats",
     "Error", "InvalidArgument", "OutOfRange", "MeshError", "FileError", "GeometryError",
     "BOUNDARY_REASONS",
 ]
@@ -616,3 +617,22 @@ def export(plan_or_path: Union[Plan, str, _os.PathLike], format: str, path: Unio
     """A plan (or a PLAN.json) in certipose-export's formats; see Plan.export."""
     p = plan_or_path if isinstance(plan_or_path, Plan) else Plan.read(plan_or_path)
     return p.export(format, path, **options)
+
+
+def sample_part() -> "Mesh":
+    """The procedural sample part the programs' examples use (2300 facets, metres; the same mesh,
+    digest for digest, as the build's examples/sample_part.off), so that examples run after
+    ``pip install`` alone."""
+    return _core.sample_part()
+
+
+def example_camera() -> dict:
+    """The examples' camera (examples/data/camera.json: a 2448 x 2048 px thin-lens camera with a
+    12 mm lens at f/8, focused at 0.6 m) as a dict in the camera JSON's shape (docs/io.md)."""
+    return _json.loads(_core.example_camera)
+
+
+def available_formats() -> Tuple[str, ...]:
+    """The formats Plan.export offers in this build: "html" only when the build had the web viewer
+    (Node.js and ``npm ci`` in web/ when the module was built)."""
+    return ("csv", "moveit", "urdf", "ply", "glb", "sheet") + (("html",) if _core.has_viewer else ())

@@ -34,6 +34,9 @@
 #include <certipose/io/plan_occluders.hpp>
 #include <certipose/io/plan_sheet.hpp>
 #include <certipose/io/step_path.hpp>
+#include <certipose/geometry/sample_part.hpp>
+
+#include "example_camera.hpp"
 #if defined(CERTIPOSE_PYTHON_READ_STEP)
 #include <certipose/io/read_step.hpp>
 #endif
@@ -1192,6 +1195,8 @@ PYBIND11_MODULE(_core, m) {
     m.def("write_atomically", [](const std::string& path, py::bytes content) { write_atomically(path, std::string(content)); });
     m.attr("has_viewer") = !certipose_viewer_script.empty();
     m.attr("version") = CERTIPOSE_VERSION;
+    m.attr("example_camera") = std::string(certipose_example_camera);
+    m.def("sample_part", [] { return std::make_shared<cp::triangle_mesh>(cp::make_sample_part().mesh); });
 
     py::class_<part_run>(m, "PartRun")
         .def("__iter__", [](py::object self) { return self; })

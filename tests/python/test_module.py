@@ -128,6 +128,15 @@ def test_strict_inputs_get_our_errors(solver, tmp_path):
         certipose.Solver(MESH, CAMERA, keep_out=[3.0])
 
 
+def test_the_examples_part_and_camera_come_with_the_package():
+    assert certipose.sample_part().digest == certipose.Mesh.read(SAMPLE).digest  # the programs' part
+    assert certipose.example_camera() == json.loads((ROOT / "examples" / "data" / "camera.json").read_text())
+    assert certipose.camera(certipose.example_camera()).model == "thin_lens"
+    formats = certipose.available_formats()
+    assert {"csv", "moveit", "urdf", "ply", "glb", "sheet"} <= set(formats)
+    assert ("html" in formats) == certipose._core.has_viewer
+
+
 def test_objects_say_what_they_are(solver):
     assert certipose.__version__ == "0.1.0"
     assert repr(solver.mesh).startswith(f"<certipose.Mesh {solver.mesh.num_faces} facets")
