@@ -197,8 +197,11 @@ python3 -c 'import json,sys; t=json.load(open(sys.argv[1]))["task"]["placement_t
 [ $? -eq 1 ] || fail "plan from a run with another tolerance: expected exit 1: $(cat err)"
 grep -q "task.placement_tolerance" err || fail "the tolerance mismatch is not named: $(cat err)"
 [ -e bad.json ] && fail "a failed plan wrote its output"
-"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --out plan.json --quiet "${tol[@]}" 2>err \
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --coverage 0.9 --out plan.json "${tol[@]}" >out 2>err \
     || fail "plan with the run's tolerance failed: $(cat err)"
+# The shares it prints hold for every placement the tolerance admits: the summary says which.
+grep -q "certified for every placement of the part within ±3.0, 3.0, 3.0 mm and 1.00° about any axis" out \
+    || fail "the plan's summary does not name the placement tolerance: $(cat out)"
 python3 - plan.json <<'EOF' || fail "PLAN.json does not record the tolerance"
 import json, sys
 t = json.load(open(sys.argv[1]))["task"]["placement_tolerance"]
