@@ -1,7 +1,9 @@
 """Load a part, certify camera poses for every facet, plan cameras and plot the coverage
-(docs/python.md). Run from the repository's root after `pip install --no-build-isolation .`:
+(docs/python.md). Runs after `pip install` alone: without --mesh and --camera it takes the sample
+part and the example camera that come with the module.
 
-    python3 examples/python/plan_cameras.py PART CAMERA.json coverage.png [--scale S] [--threads N]
+    python3 examples/python/plan_cameras.py coverage.png [--mesh PART] [--camera CAMERA.json]
+                                            [--scale S] [--threads N] [--plan PLAN.json]
 """
 import argparse
 import sys
@@ -18,16 +20,19 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("mesh")
-    ap.add_argument("camera")
-    ap.add_argument("picture")
+    ap.add_argument("picture", help="the coverage plot to write (PNG)")
+    ap.add_argument("--mesh", help="the part: a mesh or STEP file (default: certipose.sample_part())")
+    ap.add_argument("--camera", help="the camera JSON (default: certipose.example_camera())")
+    ap.add_argument("--plan", help="also write the plan here (PLAN.json)")
     ap.add_argument("--scale", type=float, default=1.0)
     ap.add_argument("--threads", type=int, default=0)
     args = ap.parse_args()
 
     # The part and the camera: a mesh file (or certipose.Mesh(V, F) from numpy arrays, a
     # trimesh.Trimesh, an Open3D mesh) and the camera JSON (or a dict of the same shape).
-    solver = certipose.Solver(args.mesh, args.camera, scale=args.scale)
+    mesh = args.mesh or certipose.sample_part()
+    camera = args.camera or certipose.example_camera()
+    solver = certipose.Solver(mesh, camera, scale=args.scale)
 
     # Every facet, on every core; the progress callback runs on this thread.
     def progress(p):
@@ -46,7 +51,8 @@ def main():
     c = plan.coverage
     print(f"{len(plan.cameras)} cameras certify {100 * c['certified_area'] / c['coverable_area']:.1f} % "
           f"of the coverable area; at least {c['lower_bound_cameras']} are needed ({c['lower_bound_method']} bound)")
-    plan.save("plan.json")
+    if args.plan:
+        plan.save(args.plan)
 
     # Each facet in the colour of the first camera that certifies it (grey: none), and the
     # certified area after 1, 2, ... cameras.
@@ -73,7 +79,7 @@ def main():
     ax2.grid(True)
     fig.tight_layout()
     fig.savefig(args.picture, dpi=90)
-    print(f"wrote plan.json and {args.picture}")
+    print(f"wrote {args.picture}" + (f" and {args.plan}" if args.plan else ""))
 
 
 if __name__ == "__main__":

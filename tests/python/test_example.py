@@ -11,13 +11,23 @@ EXAMPLE = ROOT / "examples" / "python" / "plan_cameras.py"
 
 
 def test_the_example_solves_plans_and_plots(tmp_path):
-    out = subprocess.run([sys.executable, str(EXAMPLE), str(SHARED / "meshes" / "angle_block.off"),
-                          str(SHARED / "cases" / "camera.json"), "coverage.png", "--threads", "2"],
+    (tmp_path / "kept").mkdir()
+    out = subprocess.run([sys.executable, str(EXAMPLE), "coverage.png", "--mesh", str(SHARED / "meshes" / "angle_block.off"),
+                          "--camera", str(SHARED / "cases" / "camera.json"), "--threads", "2", "--plan", "kept/plan.json"],
                          cwd=tmp_path, capture_output=True, text=True, check=True)
     assert "704 facets:" in out.stdout and "cameras certify" in out.stdout, out.stdout
     png = (tmp_path / "coverage.png").read_bytes()
     assert png.startswith(b"\x89PNG") and len(png) > 20000
-    assert (tmp_path / "plan.json").read_text().startswith("{")
+    assert (tmp_path / "kept" / "plan.json").read_text().startswith("{")
+
+
+def test_the_docs_command_runs_on_what_comes_with_the_module(tmp_path):
+    # The page's command: the sample part and the example camera from the package, and nothing
+    # written but the picture it was told to write.
+    out = subprocess.run([sys.executable, str(EXAMPLE), "python.png", "--threads", "2"],
+                         cwd=tmp_path, capture_output=True, text=True, check=True)
+    assert "2300 facets:" in out.stdout and "cameras certify" in out.stdout, out.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["python.png"]
 
 
 def python_blocks(page):
