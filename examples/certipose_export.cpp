@@ -81,7 +81,7 @@ struct export_program {
         app.add_option("plan", text.plan, "the plan written by certipose-plan")->type_name("PLAN.json")->required()->check(CLI::ExistingFile);
         app.add_option("--format", text.format, "csv, moveit, urdf, glb, html or sheet")->type_name("FORMAT")->required();
         app.add_option("--out", text.out, "the file to write")->type_name("FILE")->required();
-        app.add_option("--mesh", text.mesh, "the plan's part (needed by glb and html): OFF, OBJ, PLY or STL")
+        app.add_option("--mesh", text.mesh, "the plan's part (needed by glb, html and sheet): OFF, OBJ, PLY or STL")
             ->type_name("PART")
             ->check(CLI::ExistingFile);
         app.add_option("--scale", text.scale, "multiply mesh coordinates by S (default: the plan's scale)")->type_name("S");
@@ -157,6 +157,13 @@ struct export_program {
 using arguments = export_program::arguments;
 
 std::string content(const arguments& args, const certipose::plan_document& plan) {
+    // The plan's occluders are inputs too (the pictures read them): never write over one.
+    for (const auto& o : plan.scene.occluders) {
+        std::error_code ec;
+        if (fs::equivalent(o.path, args.out, ec))
+            throw certipose::invalid_argument("--out", "--out " + args.out.string() + " is the plan's occluder " + o.path +
+                                                           ": choose another file");
+    }
     if (args.format == "csv") return certipose::plan_csv(plan);
     if (args.format == "urdf")
         return certipose::plan_urdf(plan, {.parent_frame = args.parent_frame,
@@ -186,13 +193,6 @@ std::string content(const arguments& args, const certipose::plan_document& plan)
         mismatch("mesh.faces", std::to_string(plan.mesh.faces), std::to_string(mesh.num_faces()));
     if (!plan.mesh.digest.empty() && plan.mesh.digest != certipose::mesh_digest(mesh))
         mismatch("mesh.digest", plan.mesh.digest, certipose::mesh_digest(mesh));
-    // The occluders are inputs too: never write over one.
-    for (const auto& o : plan.scene.occluders) {
-        std::error_code ec;
-        if (fs::equivalent(o.path, args.out, ec))
-            throw certipose::invalid_argument("--out", "--out " + args.out.string() + " is the plan's occluder " + o.path +
-                                                           ": choose another file");
-    }
     const certipose::plan_occluders occluders = certipose::read_plan_occluders(plan);
     if (!args.quiet)
         for (const auto& why : occluders.left_out) std::fprintf(stderr, "certipose-export: warning: %s\n", why.c_str());

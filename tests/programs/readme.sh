@@ -36,6 +36,14 @@ print("readme: %d cameras, lowest box z %.3f m" % (len(low), min(low)))
 PY
 "$node" "$src/tests/web/validate_glb.mjs" plan.glb >/dev/null || fail "plan.glb does not validate"
 "$node" "$src/tests/web/viewer_test.mjs" plan.html viewer.png > viewer.log 2>&1 || fail "viewer: $(tail -5 viewer.log)"
+# The plan's occluder is an input of the export too: never written over. (A copy of the plan
+# naming a copy of the plate, so that a failure cannot touch the checkout.)
+cp "$src/examples/data/fixture_plate.off" plate_copy.off
+sed 's|examples/data/fixture_plate.off|plate_copy.off|' plan.json > plan_copy.json
+build/release/examples/certipose-export plan_copy.json --format csv --out plate_copy.off 2>err
+[ $? -eq 1 ] || fail "export over the plan's occluder: expected exit 1"
+grep -q "is the plan's occluder" err || fail "the occluder as --out is not named: $(cat err)"
+cmp -s plate_copy.off "$src/examples/data/fixture_plate.off" || fail "export wrote over the plan's occluder"
 # The underside resting on the plate is named for what it is, not left to a finer eps.
 python3 - <<'PY' || exit 1
 import json, sys
