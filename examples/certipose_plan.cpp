@@ -61,13 +61,6 @@
 
 namespace {
 
-/// `v` with `decimals` decimals, for the summary lines.
-std::string fixed_text(double v, int decimals = 1) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v == 0 ? 0.0 : v);
-    return buf;
-}
-
 namespace fs = std::filesystem;
 using namespace certipose_program;
 using I = certipose::boost_interval;
@@ -307,13 +300,14 @@ int plan_program::run(const arguments& args, const interruption& signals) {
                     pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
         // The shares above hold for every placement the tolerance admits: say which, beside them.
         if (const auto& t = doc.task.placement; t && !t->none()) {
-            std::string how = "  certified for every placement of the part within ±" + fixed_text(1000 * t->translation[0]) +
-                              ", " + fixed_text(1000 * t->translation[1]) + ", " + fixed_text(1000 * t->translation[2]) +
-                              " mm and " + fixed_text(t->rotation * 180 / std::numbers::pi, 2) + "°";
+            using certipose::detail::plan_export::fixed;
+            std::string how = "  certified for every placement of the part within ±" + fixed(1000 * t->translation[0], 1) +
+                              ", " + fixed(1000 * t->translation[1], 1) + ", " + fixed(1000 * t->translation[2], 1) +
+                              " mm and " + fixed(t->rotation * 180 / std::numbers::pi, 2) + "°";
             if (t->axis)
-                how += " about (" + fixed_text(t->axis->x(), 3) + ", " + fixed_text(t->axis->y(), 3) + ", " +
-                       fixed_text(t->axis->z(), 3) + ")" +
-                       (t->tilt > 0 ? ", tipped by up to " + fixed_text(t->tilt * 180 / std::numbers::pi, 2) + "°" : "");
+                how += " about (" + fixed(t->axis->x(), 3) + ", " + fixed(t->axis->y(), 3) + ", " +
+                       fixed(t->axis->z(), 3) + ")" +
+                       (t->tilt > 0 ? ", tipped by up to " + fixed(t->tilt * 180 / std::numbers::pi, 2) + "°" : "");
             else
                 how += " about any axis";
             std::printf("%s (--part-tolerance; without it, more of the part may be coverable)\n", how.c_str());

@@ -294,6 +294,20 @@ inline std::vector<std::size_t> plan_first_cameras(std::size_t num_faces, const 
     return by;
 }
 
+/// The grey of facets no camera certifies in the plan's pictures, and the darker grey of those no
+/// pose can see (plan_unseen_facets).
+inline constexpr rgb plan_uncovered_colour{150, 150, 150}, plan_unseen_colour{88, 92, 104};
+
+/// For each facet of a part of `num_faces` faces, whether `plan` says that no pose can see it
+/// (uncovered as "never visible" or "rests on an occluder").
+inline std::vector<char> plan_unseen_facets(std::size_t num_faces, const plan_document& plan) {
+    std::vector<char> unseen(num_faces, 0);
+    for (const auto& u : plan.uncovered)
+        if (u.facet < num_faces)
+            unseen[u.facet] = u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::rests_on_occluder;
+    return unseen;
+}
+
 /// A PLY of the plan: each facet in the colour of the first camera that certifies it (grey when
 /// none does), and each camera's position box in its colour. Throws out_of_range for a facet
 /// index beyond `mesh`.
@@ -303,7 +317,7 @@ inline std::string plan_ply_text(const triangle_mesh& mesh, const plan_document&
     const auto colour = plan_camera_colour;
     detail::ply::builder out;
     for (std::size_t f = 0; f < mesh.num_faces(); ++f) {  // unshared vertices: one colour per facet
-        const rgb c = by[f] < plan.cameras.size() ? colour(by[f]) : rgb{150, 150, 150};
+        const rgb c = by[f] < plan.cameras.size() ? colour(by[f]) : plan_uncovered_colour;
         const std::size_t first = out.num_vertices;
         for (const auto& v : mesh.facet(f).v) out.vertex(v, c);
         out.face(first, first + 1, first + 2, c);

@@ -220,10 +220,7 @@ inline std::string plan_glb(const triangle_mesh& mesh, const plan_document& plan
     const double h = std::numbers::sqrt2 / 2;  // −90° about x: part z (up) → glTF y (up)
     root.rotation = {-h, 0.0, 0.0, h};
 
-    std::vector<char> unseen(mesh.num_faces(), 0);  // no pose can see it: darker than "not covered"
-    for (const auto& u : plan.uncovered)
-        if (u.facet < unseen.size())
-            unseen[u.facet] = u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::rests_on_occluder;
+    const std::vector<char> unseen = plan_unseen_facets(mesh.num_faces(), plan);
 
     // The part: three vertices per facet, so each facet keeps its own colour and normal.
     std::vector<float> xyz, normals, colours;
@@ -232,7 +229,7 @@ inline std::string plan_glb(const triangle_mesh& mesh, const plan_document& plan
         const auto& fa = mesh.facet(f);
         Eigen::Vector3d n = (fa.v[1] - fa.v[0]).cross(fa.v[2] - fa.v[0]);
         n = n.norm() > 0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d(0, 0, 1);
-        const rgb c = by[f] < plan.cameras.size() ? plan_camera_colour(by[f]) : unseen[f] ? rgb{88, 92, 104} : rgb{150, 150, 150};
+        const rgb c = by[f] < plan.cameras.size() ? plan_camera_colour(by[f]) : unseen[f] ? plan_unseen_colour : plan_uncovered_colour;
         for (const auto& v : fa.v)
             for (int i = 0; i < 3; ++i) {
                 xyz.push_back(static_cast<float>(v[i]));

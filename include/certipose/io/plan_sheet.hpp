@@ -57,11 +57,9 @@ inline std::string view_svg(const triangle_mesh& mesh, const plan_document& plan
     const Eigen::Vector3d p(e.position[0], e.position[1], e.position[2]);
     const Eigen::Matrix3d Rt = e.rotation.transpose();
     const double near = std::max(1e-4, plan.camera.d_min / 20);
-    std::vector<char> mine(mesh.num_faces(), 0), unseen(mesh.num_faces(), 0);
+    std::vector<char> mine(mesh.num_faces(), 0);
     for (std::size_t f : plan.cameras[e.index].facets) mine[f] = 1;
-    for (const auto& u : plan.uncovered)
-        if (u.facet < unseen.size())
-            unseen[u.facet] = u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::rests_on_occluder;
+    const std::vector<char> unseen = plan_unseen_facets(mesh.num_faces(), plan);
     std::vector<drawn> out;
     const auto add = [&](const facet& fa, rgb colour, bool two_sided) {
         std::array<Eigen::Vector3d, 3> c;
@@ -86,8 +84,8 @@ inline std::string view_svg(const triangle_mesh& mesh, const plan_document& plan
     for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
         const rgb colour = mine[f]                        ? plan_camera_colour(e.index)
                            : first[f] < plan.cameras.size() ? rgb{205, 208, 214}
-                           : unseen[f]                      ? rgb{88, 92, 104}
-                                                            : rgb{150, 150, 150};
+                           : unseen[f]                      ? plan_unseen_colour
+                                                            : plan_uncovered_colour;
         add(mesh.facet(f), colour, false);
     }
     for (const auto& m : occluders)
