@@ -17,12 +17,11 @@
 // failed" and exits 1 on any failure (2 on bad usage).
 
 import { existsSync, readFileSync } from 'node:fs';
-import { createRequire } from 'node:module';
 import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const requireFromWeb = createRequire(path.join(here, '..', '..', 'web', 'package.json'));
+import { launchChromium } from './chromium.mjs';
+
 
 const [fileArg, csvArg, screenshotArg] = process.argv.slice(2);
 if (!fileArg || !csvArg || process.argv.length > 5) {
@@ -35,18 +34,6 @@ for (const f of [fileArg, csvArg]) {
     process.exit(2);
   }
 }
-let chromium;
-try {
-  ({ chromium } = requireFromWeb('playwright-core'));
-} catch (e) {
-  console.error(`sheet_test: cannot load playwright-core (run \`npm ci\` in web/): ${e.message}`);
-  process.exit(2);
-}
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
-if (!existsSync(executablePath)) {
-  console.error(`sheet_test: no Chromium at ${executablePath} (apt-get install chromium, or set CHROMIUM)`);
-  process.exit(2);
-}
 
 let passed = 0;
 let failed = 0;
@@ -58,7 +45,7 @@ const lines = readFileSync(csvArg, 'utf8').trim().split('\n');
 const header = lines[0].split(',');
 const rows = lines.slice(1).map((l) => Object.fromEntries(l.split(',').map((v, i) => [header[i], v])));
 
-const browser = await chromium.launch({ executablePath, args: ['--no-sandbox'] });
+const browser = await launchChromium('sheet_test');
 let exitCode = 0;
 try {
   const page = await browser.newPage({ viewport: { width: 1280, height: 900 }, deviceScaleFactor: 1 });

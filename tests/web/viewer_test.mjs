@@ -21,12 +21,11 @@
 // (playwright adds the latter itself too) gives WebGL 2 on ANGLE over SwiftShader's Vulkan.
 
 import { existsSync } from 'node:fs';
-import { createRequire } from 'node:module';
 import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const requireFromWeb = createRequire(path.join(here, '..', '..', 'web', 'package.json'));
+import { launchChromium } from './chromium.mjs';
+
 
 const READY_TIMEOUT_MS = Number(process.env.CERTIPOSE_READY_TIMEOUT_MS || 120000);
 const MIN_DRAWN_FRACTION = 0.005; // at least 0.5% of the canvas must differ from the background
@@ -40,18 +39,6 @@ if (!fileArg || process.argv.length > 4) {
 const file = path.resolve(fileArg);
 if (!existsSync(file)) {
   console.error(`viewer_test: no such file: ${file}`);
-  process.exit(2);
-}
-let chromium;
-try {
-  ({ chromium } = requireFromWeb('playwright-core'));
-} catch (e) {
-  console.error(`viewer_test: cannot load playwright-core (run \`npm ci\` in web/): ${e.message}`);
-  process.exit(2);
-}
-const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
-if (!existsSync(executablePath)) {
-  console.error(`viewer_test: no Chromium at ${executablePath} (apt-get install chromium, or set CHROMIUM)`);
   process.exit(2);
 }
 
@@ -75,10 +62,7 @@ const pageErrors = [];
 const foreignRequests = [];
 const ignoredMessages = [];
 
-const browser = await chromium.launch({
-  executablePath,
-  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium('viewer_test', ['--use-angle=swiftshader', '--enable-unsafe-swiftshader']);
 let exitCode = 0;
 try {
   const page = await browser.newPage({ viewport: VIEWPORT, deviceScaleFactor: 1 });
