@@ -1,17 +1,18 @@
 #!/usr/bin/env bash
 # Installs what certipose needs on Debian 12, and nothing when it is all there (idempotent):
 # the C++ toolchain and libraries, and for the Python module (docs/python.md) pybind11, the
-# Python headers, venv, pip, setuptools and wheel (pip install --no-build-isolation) and
-# matplotlib (its example's plot); OpenCASCADE's data-exchange and modelling toolkits read STEP
-# files (io/read_step.hpp; LGPL-2.1 with the OCCT exception); ROS's check_urdf (liburdfdom-tools)
-# and Chromium only test what the exports and the viewer write.
+# Python headers, venv and pip (its build backend needs nothing else) and matplotlib (its
+# example's plot); OpenCASCADE's data-exchange and modelling toolkits read STEP files
+# (io/read_step.hpp; LGPL-2.1 with the OCCT exception); ROS's check_urdf (liburdfdom-tools),
+# Chromium and Open3D (python3-open3d: a mesh tool that is not ours) only test what the exports,
+# the viewer and the Python helpers write.
 set -euo pipefail
 packages=(g++ cmake ninja-build ccache libeigen3-dev libboost-dev libcgal-dev libgmp-dev libmpfr-dev
           libtbb-dev doctest-dev libbenchmark-dev nlohmann-json3-dev libcli11-dev
           libopenmpi-dev openmpi-bin libglpk-dev clang-14 libclang-rt-14-dev libyaml-cpp-dev libtinygltf-dev
           libocct-data-exchange-dev libocct-modeling-algorithms-dev
           chromium liburdfdom-tools python3-numpy python3-pytest
-          pybind11-dev python3-dev python3-venv python3-pip python3-setuptools python3-wheel python3-matplotlib)
+          pybind11-dev python3-dev python3-venv python3-pip python3-matplotlib python3-open3d)
 # Node.js bundles the web viewer (certipose-export --format html) and runs its tests; a machine
 # that has no `node` gets Debian's (18 on Debian 12). The lockfile is pinned to versions whose
 # `engines` Debian's Node.js meets; the check after the install refuses an older `node`.

@@ -16,6 +16,8 @@ dicts into the camera JSON, codes into strings and per-facet arrays into a part'
 
 from __future__ import annotations
 
+import html as _html
+import inspect as _inspect
 import json as _json
 import os as _os
 import warnings as _warnings
@@ -80,11 +82,12 @@ def _regions(field: str, regions: Any) -> list:
     def one(r: Any, where: str) -> str:
         if isinstance(r, str):
             return r
-        if isinstance(r, (tuple, list)) and r and isinstance(r[0], str):
+        if isinstance(r, (tuple, list)) and r and r[0] in ("box", "sphere"):
             return r[0] + ":" + ",".join(repr(float(x)) for x in r[1:])
         raise InvalidArgument(f"{where}: expected \"box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX\", \"sphere:X,Y,Z,R\" or a tuple "
                               f"(\"box\", ...) / (\"sphere\", ...), got {r!r}", where)
-    if isinstance(regions, str) or (isinstance(regions, tuple) and regions and isinstance(regions[0], str)):
+    # One region as a tuple starts with its kind; a tuple of region strings is several regions.
+    if isinstance(regions, str) or (isinstance(regions, tuple) and regions and regions[0] in ("box", "sphere")):
         regions = [regions]
     return [one(r, f"{field}[{i}]") for i, r in enumerate(regions)]
 
@@ -104,7 +107,14 @@ def _camera_from_dict(spec: dict) -> "Camera":
 
 
 Camera.from_dict = staticmethod(_camera_from_dict)
-Camera.to_dict = lambda self: _json.loads(self.to_json())
+
+
+def _camera_to_dict(self) -> dict:
+    """The camera and task as a dict in the camera JSON's shape (certipose.camera() takes it back)."""
+    return _json.loads(self.to_json())
+
+
+Camera.to_dict = _camera_to_dict
 
 
 def camera(spec: Union["Camera", dict, str, _os.PathLike], *, working_distance: Optional[Sequence[float]] = None,
@@ -147,6 +157,46 @@ def _mesh(m: Union["Mesh", str, _os.PathLike, Any], scale: float = 1.0) -> "Mesh
                           f"got {type(m).__name__}", "mesh")
 
 
+_BOUND_NAMES = ("x", "y", "z", "phi", "gamma", "beta")
+#: The 12 edges of a box whose 8 corners are numbered by bits (x: 1, y: 2, z: 4).
+_BOX_EDGES = _np.array([[0, 1], [2, 3], [4, 5], [6, 7], [0, 2], [1, 3], [4, 6], [5, 7], [0, 4], [1, 5], [2, 6], [3, 7]])
+_STYLE = ("<style>.certipose table{border-collapse:collapse;font:12px sans-serif}"
+          ".certipose td,.certipose th{border:1px solid #ccc;padding:2px 6px;text-align:right}"
+          ".certipose caption{text-align:left;font-weight:bold;padding:4px 0}</style>")
+
+
+def _table(caption: str, head: Sequence[str], rows: Sequence[Sequence[Any]], more: int = 0) -> str:
+    """An HTML table (every cell escaped); `more` rows left out are counted in a last row."""
+    e = _html.escape
+    out = [f"<table><caption>{e(caption)}</caption><tr>" + "".join(f"<th>{e(h)}</th>" for h in head) + "</tr>"]
+    out += ["<tr>" + "".join(f"<td>{e(str(c))}</td>" for c in r) + "</tr>" for r in rows]
+    if more:
+        out.append(f'<tr><td colspan="{len(head)}">… {more} more</td></tr>')
+    return "".join(out) + "</table>"
+
+
+def _line_set(points: _np.ndarray, lines: _np.ndarray, colour: Sequence[float]) -> Any:
+    """An Open3D LineSet (Open3D is imported here, only when asked for)."""
+    try:
+        import open3d as o3d
+    except ImportError:
+        raise ImportError("certipose: to_open3d needs Open3D (Debian: apt-get install python3-open3d; "
+                          "or pip install open3d); box_lines() gives the same geometry as arrays") from None
+    ls = o3d.geometry.LineSet(o3d.utility.Vector3dVector(_np.asarray(points, dtype=float)),
+                              o3d.utility.Vector2iVector(_np.asarray(lines, dtype=_np.int32)))
+    ls.paint_uniform_color(list(colour))
+    return ls
+
+
+def _box_lines(position_bounds: _np.ndarray) -> Tuple[_np.ndarray, _np.ndarray]:
+    """(points (8K, 3), lines (12K, 2)) of K position boxes given as (K, 3, 2) bounds."""
+    k = position_bounds.shape[0]
+    corner = (_np.arange(8)[:, None] >> _np.arange(3)[None, :]) & 1  # (8, 3): 0 lower, 1 upper
+    points = position_bounds[:, _np.arange(3)[None, :], corner].reshape(-1, 3)  # corner c's axis a: bound corner[c, a]
+    lines = (_BOX_EDGES[None, :, :] + 8 * _np.arange(k)[:, None, None]).reshape(-1, 2)
+    return points, lines
+
+
 class Boxes:
     """Classified pose boxes as arrays. ``bounds`` is (N, 6, 2): rows x, y, z (metres), phi,
     gamma, beta (radians, ZXZ), columns lower, upper, exactly as certified (outward-rounded).
@@ -161,18 +211,22 @@ class Boxes:
 
     @property
     def positions(self) -> _np.ndarray:
+        """(N, 3, 2) position intervals [x, y, z] x [lower, upper], metres (a view of ``bounds``)."""
         return self.bounds[:, 0:3, :]
 
     @property
     def orientations(self) -> _np.ndarray:
+        """(N, 3, 2) ZXZ Euler-angle intervals [phi, gamma, beta] x [lower, upper], radians (a view)."""
         return self.bounds[:, 3:6, :]
 
     @property
     def classes(self) -> _np.ndarray:
+        """(N,) "valid" or "boundary" for each box."""
         return _CLASS_NAMES[self.class_codes]
 
     @property
     def reasons(self) -> _np.ndarray:
+        """(N,) why each BOUNDARY box stayed undecided (one of BOUNDARY_REASONS); "" for VALID boxes."""
         return _REASON_NAMES[self.reason_codes]
 
     @property
@@ -186,6 +240,58 @@ class Boxes:
     def _counts(self) -> str:
         v = int(self.valid.sum())
         return f"{v} valid, {len(self) - v} boundary boxes"
+
+    def _facet_column(self) -> _np.ndarray:
+        raise NotImplementedError
+
+    def to_records(self) -> _np.ndarray:
+        """One record per box, as a numpy structured array that ``pandas.DataFrame(r.to_records())``
+        turns into a table: ``facet``, ``cls`` ("valid" / "boundary"), ``reason``, then ``x_lo``,
+        ``x_hi``, ``y_lo``, ... ``beta_hi`` (metres, radians; the certified bounds as they are)."""
+        fields = [("facet", _np.int64), ("cls", "U8"), ("reason", "U32")] + [
+            (f"{n}_{end}", _np.float64) for n in _BOUND_NAMES for end in ("lo", "hi")]
+        out = _np.empty(len(self), dtype=fields)
+        out["facet"] = self._facet_column()
+        out["cls"] = self.classes
+        out["reason"] = self.reasons
+        for i, n in enumerate(_BOUND_NAMES):
+            out[f"{n}_lo"] = self.bounds[:, i, 0]
+            out[f"{n}_hi"] = self.bounds[:, i, 1]
+        return out
+
+    def _select(self, which: Union[str, _np.ndarray]) -> _np.ndarray:
+        if isinstance(which, str):
+            masks = {"valid": self.valid, "boundary": ~self.valid, "all": _np.ones(len(self), bool)}
+            if which not in masks:
+                raise InvalidArgument(f"which: expected \"valid\", \"boundary\", \"all\" or a mask, got {which!r}", "which")
+            return masks[which]
+        mask = _np.asarray(which)
+        if mask.dtype != bool or mask.shape != (len(self),):
+            raise InvalidArgument(f"which: a mask must be a bool array of shape ({len(self)},), got {mask.dtype} "
+                                  f"{mask.shape}", "which")
+        return mask
+
+    def box_lines(self, which: Union[str, _np.ndarray] = "valid") -> Tuple[_np.ndarray, _np.ndarray]:
+        """The position boxes that ``which`` selects ("valid", "boundary", "all" or a bool mask) as
+        line geometry: (points (8K, 3) in metres, lines (12K, 2) index pairs into points). Open3D
+        draws it (to_open3d), trimesh with ``trimesh.load_path(points[lines])``."""
+        return _box_lines(self.positions[self._select(which)])
+
+    def to_open3d(self, which: Union[str, _np.ndarray] = "valid", colour: Sequence[float] = (0.1, 0.55, 0.2)) -> Any:
+        """The position boxes ``which`` selects as an ``open3d.geometry.LineSet`` (see box_lines)."""
+        return _line_set(*self.box_lines(which), colour)
+
+    def _html_boxes(self, limit: int = 10) -> str:
+        rows = [[self._facet_column()[i], self.classes[i], self.reasons[i] or "—"] +
+                [f"{self.bounds[i, k, 0]:.4g} … {self.bounds[i, k, 1]:.4g}" for k in range(6)]
+                for i in range(min(limit, len(self)))]
+        return _table("boxes (metres, radians)", ["facet", "class", "reason", *_BOUND_NAMES], rows,
+                      max(0, len(self) - limit))
+
+    def _html_counts(self) -> str:
+        reasons, counts = _np.unique(self.reasons[~self.valid], return_counts=True)
+        rows = [["valid", int(self.valid.sum())]] + [[f"boundary: {r}", int(c)] for r, c in zip(reasons, counts)]
+        return _table("boxes by class", ["class", "boxes"], rows)
 
 
 class FacetResult(Boxes):
@@ -201,10 +307,20 @@ class FacetResult(Boxes):
 
     @property
     def termination(self) -> str:
+        """How the facet's solve ended: "complete", or the budget or cancellation that stopped it."""
         return self.stats.get("termination") or self.record.get("termination", "")
 
     def __repr__(self) -> str:
         return f"<certipose.FacetResult facet {self.facet}: {self._counts()}>"
+
+    def _facet_column(self) -> _np.ndarray:
+        return _np.full(len(self), self.facet, dtype=_np.int64)
+
+    def _repr_html_(self) -> str:
+        """A notebook shows the result as its counts and its first boxes."""
+        return (f'{_STYLE}<div class="certipose"><p><b>certipose.FacetResult</b> facet {self.facet}: '
+                f"{_html.escape(self._counts())} ({_html.escape(self.termination or 'no budget stop')})</p>"
+                f"{self._html_counts()}{self._html_boxes()}</div>")
 
 
 class PartResult(Boxes):
@@ -222,20 +338,35 @@ class PartResult(Boxes):
 
     @property
     def termination(self) -> str:
+        """How the run ended: "complete", or the budget or cancellation that stopped it."""
         return self.summary.get("termination", "")
 
     def __repr__(self) -> str:
         return f"<certipose.PartResult {len(self.records)} facets: {self._counts()} ({self.termination})>"
 
+    def _facet_column(self) -> _np.ndarray:
+        return _np.asarray(self.facets, dtype=_np.int64)
+
+    def _repr_html_(self) -> str:
+        """A notebook shows the run as its counts, per facet and per box."""
+        with_valid = len(_np.unique(self.facets[self.valid]))
+        return (f'{_STYLE}<div class="certipose"><p><b>certipose.PartResult</b> {len(self.records)} facets solved, '
+                f"{with_valid} with a VALID box: {_html.escape(self._counts())} ({_html.escape(self.termination)})</p>"
+                f"{self._html_counts()}{self._html_boxes()}</div>")
+
 
 class Progress(NamedTuple):
-    """A whole-part run's progress, as certipose-part's progress line shows it."""
+    """A whole-part run's progress, as certipose-part's progress line shows it. ``valid``: VALID
+    boxes found so far (keep_largest keeps at most K of each facet's); ``boundary``: BOUNDARY boxes
+    the result will hold (0 unless the run keeps them, ``boundary=True``); ``boundary_found``: those
+    the paving left undecided, kept or not."""
     facets_done: int
     facets_total: int
     valid: int
     boundary: int
     seconds: float
     seconds_left: float  #: estimate (elapsed x work left / work done)
+    boundary_found: int = 0
 
 
 class Coverage(NamedTuple):
@@ -329,6 +460,7 @@ class Solver:
 
     @property
     def occlusion(self) -> str:
+        """The occlusion test in use: "aabb", "boolean" or "none"."""
         return self._core.occlusion
 
     def solve_facet(self, facet: int, *, position_eps: float = 0.1, orientation_eps: float = 0.38,
@@ -359,7 +491,9 @@ class Solver:
                progress):
         s = _settings(position_eps, orientation_eps, max_boxes_per_facet, facet_time_limit, paper_paving, corner_depth,
                       corner_rest, refine, grow)
-        cb = None if progress is None else (lambda d: progress(Progress(**d)))
+        kept = bool(boundary)
+        cb = None if progress is None else (
+            lambda d: progress(Progress(**{**d, "boundary": d["boundary"] if kept else 0, "boundary_found": d["boundary"]})))
         return self._core.start_part(s, _facet_selection(facets), _count("threads", threads, 0), bool(boundary),
                                      None if keep_largest is None else _count("keep_largest", keep_largest),
                                      None if max_boxes is None else _count("max_boxes", max_boxes), time_limit,
@@ -418,7 +552,7 @@ def _plan(self, part, *, cameras: Optional[int] = None, coverage: Optional[float
         part = part.folder
     if isinstance(part, (str, _os.PathLike)):
         doc = _core.make_plan(self._core, _os.fspath(part), per, False, self.mesh_path, self.scale, opt, progress)
-        return Plan(doc)
+        return Plan(doc, self.mesh)
     if not isinstance(part, PartResult):
         raise InvalidArgument(f"plan: expected a PartResult or a certipose-part folder, got {type(part).__name__}", "part")
     mine, theirs = _json.loads(_core.run_record(self._core)), part.summary.get("run")
@@ -434,7 +568,7 @@ def _plan(self, part, *, cameras: Optional[int] = None, coverage: Optional[float
                               "occlusion")
     doc = _core.make_plan(self._core, (part.facets, part.bounds, part.class_codes, part.records), per, True,
                           self.mesh_path, self.scale, opt, progress)
-    return Plan(doc)
+    return Plan(doc, self.mesh)
 
 
 def _verify(self, poses, *, tolerance: bool = True,
@@ -474,6 +608,7 @@ class PartIterator:
             raise
 
     def cancel(self) -> None:
+        """Ends the run early: facets already finished are still yielded, then iteration stops."""
         self._run.cancel()
 
 
@@ -484,9 +619,10 @@ class Plan:
     method) and ``uncovered`` (facets no chosen camera certifies, with the reason) are the
     document's fields as dicts; ``to_dict()`` is the whole document."""
 
-    def __init__(self, doc: "_core.PlanDocument"):
+    def __init__(self, doc: "_core.PlanDocument", mesh: Optional["Mesh"] = None):
         self._doc = doc
         self._dict = _json.loads(doc.to_json())
+        self._mesh = mesh  # the part, when the plan was made here (the 3-D view draws it)
 
     @staticmethod
     def read(path: Union[str, _os.PathLike]) -> "Plan":
@@ -494,18 +630,24 @@ class Plan:
         return Plan(_core.PlanDocument.read(_os.fspath(path)))
 
     def to_dict(self) -> dict:
+        """The whole PLAN.json document as a dict (a fresh copy)."""
         return _json.loads(self._doc.to_json())
 
     @property
     def cameras(self) -> list:
+        """One dict per camera: "position" and "orientation" bounds, the "nominal" pose [x, y, z, phi,
+        gamma, beta], "facets" it certifies, "certified_area" (m^2), "aim" (the point it looks at)."""
         return self._dict["cameras"]
 
     @property
     def coverage(self) -> dict:
+        """"certified_area", "coverable_area" and "total_area" (m^2), "lower_bound_cameras" and its
+        "lower_bound_method", and "curve" (the certified area after each camera)."""
         return self._dict["coverage"]
 
     @property
     def uncovered(self) -> list:
+        """The facets no chosen camera certifies, each {"facet": i, "reason": why}."""
         return self._dict.get("uncovered", [])
 
     @property
@@ -540,6 +682,71 @@ class Plan:
         c = self.coverage
         share = c["certified_area"] / c["coverable_area"] if c["coverable_area"] else 0.0
         return f"<certipose.Plan {len(self.cameras)} cameras, {100 * share:.1f} % of the coverable area>"
+
+    def to_records(self) -> _np.ndarray:
+        """One record per camera, as a numpy structured array (``pandas.DataFrame(plan.to_records())``):
+        ``camera``, the nominal pose ``x``, ``y``, ``z``, ``phi``, ``gamma``, ``beta`` (metres,
+        radians, ZXZ), the certified bounds ``x_lo`` ... ``beta_hi``, ``aim_x``, ``aim_y``, ``aim_z``
+        (the point on the part it looks at), ``facets`` (how many it certifies) and
+        ``certified_area`` (m^2)."""
+        fields = ([("camera", _np.int64)] + [(n, _np.float64) for n in _BOUND_NAMES] +
+                  [(f"{n}_{end}", _np.float64) for n in _BOUND_NAMES for end in ("lo", "hi")] +
+                  [("aim_x", _np.float64), ("aim_y", _np.float64), ("aim_z", _np.float64), ("facets", _np.int64),
+                   ("certified_area", _np.float64)])
+        out = _np.empty(len(self.cameras), dtype=fields)
+        for k, c in enumerate(self.cameras):
+            bounds = list(c["position"]) + list(c["orientation"])
+            out[k] = ((k, *c["nominal"], *[b for lo_hi in bounds for b in lo_hi], *c["aim"], len(c["facets"]),
+                       c["certified_area"]))
+        return out
+
+    def to_open3d(self, colour: Sequence[float] = (0.85, 0.3, 0.1)) -> Any:
+        """The cameras as one ``open3d.geometry.LineSet``: each camera's certified position box and a
+        line from its nominal position to its aim point on the part."""
+        points, lines = _box_lines(_np.array([c["position"] for c in self.cameras], dtype=float).reshape(-1, 3, 2))
+        sight = _np.array([p for c in self.cameras for p in (c["nominal"][:3], c["aim"])], dtype=float).reshape(-1, 3)
+        sight_lines = len(points) + _np.arange(len(sight)).reshape(-1, 2)
+        return _line_set(_np.vstack([points, sight]), _np.vstack([lines, sight_lines]), colour)
+
+    def _viewer_html(self) -> Optional[str]:
+        """The 3-D viewer's page, or None when this build has no viewer or the part is not at hand."""
+        if not _core.has_viewer:
+            return None
+        mesh = self._mesh
+        if mesh is None:
+            path = self._dict["mesh"].get("path", "")
+            if not path or not _os.path.isfile(path):
+                return None
+            try:
+                mesh = _mesh(path, self._dict["mesh"]["scale"])
+            except Error:
+                return None
+        try:
+            return self._doc.export("html", mesh, "world", "optical", "certipose plan", "camera_", "certipose_cameras",
+                                    False).decode()
+        except Error:  # e.g. a different part under the recorded path: the table still shows
+            return None
+
+    def _repr_html_(self) -> str:
+        """A notebook shows the plan as its cameras' table and, when the part is at hand and the build
+        has the web viewer, the 3-D viewer inline."""
+        c = self.coverage
+        share = c["certified_area"] / c["coverable_area"] if c["coverable_area"] else 0.0
+        of_part = c["certified_area"] / c["total_area"] if c["total_area"] else 0.0
+        rows = [[k, *(f"{1000 * v:.1f}" for v in cam["nominal"][:3]), len(cam["facets"]),
+                 f"{1e4 * cam['certified_area']:.1f}", *(f"{1000 * v:.1f}" for v in cam["aim"])]
+                for k, cam in enumerate(self.cameras)]
+        table = _table("cameras", ["camera", "x mm", "y mm", "z mm", "facets", "area cm²", "aim x mm", "aim y mm",
+                                   "aim z mm"], rows)
+        page = self._viewer_html()
+        view = ("<p><i>The 3-D view needs the part and a build with the web viewer: "
+                "plan.export(\"html\", \"plan.html\", mesh=...).</i></p>" if page is None else
+                f'<iframe class="certipose-viewer" srcdoc="{_html.escape(page, quote=True)}" '
+                f'style="width:100%;height:480px;border:1px solid #ccc" sandbox="allow-scripts"></iframe>')
+        return (f'{_STYLE}<div class="certipose"><p><b>certipose.Plan</b> {len(self.cameras)} cameras certify '
+                f"{100 * share:.1f} % of the coverable area, {100 * of_part:.1f} % of the part; at least "
+                f"{c['lower_bound_cameras']} ({_html.escape(str(c['lower_bound_method']))}); "
+                f"{len(self.uncovered)} facets uncovered</p>{table}{view}</div>")
 
 
 def read_part(folder: Union[str, _os.PathLike]) -> PartResult:
@@ -619,6 +826,28 @@ def export(plan_or_path: Union[Plan, str, _os.PathLike], format: str, path: Unio
     return p.export(format, path, **options)
 
 
+def _spell_out(function: Callable, *methods: Callable) -> None:
+    """Gives `function` (mesh, camera_spec, ..., **options) the signature help() and IDEs show: its
+    own parameters, then the Solver's keywords and those of `methods` by name, keyword-only."""
+    own = _inspect.signature(function)
+    params = [p for p in own.parameters.values() if p.kind is not p.VAR_KEYWORD]
+    names = {p.name for p in params}
+    for m in methods:
+        for p in _inspect.signature(m).parameters.values():
+            if p.kind is p.KEYWORD_ONLY and p.name not in names:
+                params.append(p)
+                names.add(p.name)
+    function.__signature__ = own.replace(parameters=params)
+
+
+_spell_out(solve_facet, Solver.__init__, Solver.solve_facet)
+_spell_out(solve_part, Solver.__init__, Solver.solve_part)
+_spell_out(iter_part, Solver.__init__, Solver.iter_part)
+_spell_out(plan, Solver.__init__, Solver.plan)
+_spell_out(verify, Solver.__init__, Solver.verify)
+_spell_out(export, Plan.export)
+
+
 def sample_part() -> "Mesh":
     """The procedural sample part the programs' examples use (2300 facets, metres; the same mesh,
     digest for digest, as the build's examples/sample_part.off), so that examples run after
@@ -634,5 +863,5 @@ def example_camera() -> dict:
 
 def available_formats() -> Tuple[str, ...]:
     """The formats Plan.export offers in this build: "html" only when the build had the web viewer
-    (Node.js and ``npm ci`` in web/ when the module was built)."""
+    (Node.js on the machine when the module was built; see docs/python.md#install)."""
     return ("csv", "moveit", "urdf", "ply", "glb", "sheet") + (("html",) if _core.has_viewer else ())

@@ -77,6 +77,11 @@ class Boxes:
     @property
     def valid(self) -> npt.NDArray[np.bool_]: ...
     def __len__(self) -> int: ...
+    def to_records(self) -> npt.NDArray[np.void]: ...       # facet, cls, reason, x_lo, x_hi, ... beta_hi
+    def box_lines(self, which: Union[str, npt.NDArray[np.bool_]] = "valid") -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+    def to_open3d(self, which: Union[str, npt.NDArray[np.bool_]] = "valid",
+                  colour: Sequence[float] = (0.1, 0.55, 0.2)) -> Any: ...  # open3d.geometry.LineSet
+    def _repr_html_(self) -> str: ...
 
 class FacetResult(Boxes):
     facet: int
@@ -100,6 +105,7 @@ class Progress(NamedTuple):
     boundary: int
     seconds: float
     seconds_left: float
+    boundary_found: int = 0
 
 class Coverage(NamedTuple):
     certified: npt.NDArray[np.int64]
@@ -126,6 +132,9 @@ class Plan:
     @property
     def seconds(self) -> dict: ...
     def save(self, path: _Path) -> None: ...
+    def to_records(self) -> npt.NDArray[np.void]: ...       # camera, x ... beta, x_lo ... beta_hi, aim_*, facets, certified_area
+    def to_open3d(self, colour: Sequence[float] = (0.85, 0.3, 0.1)) -> Any: ...  # open3d.geometry.LineSet
+    def _repr_html_(self) -> str: ...
     def export(self, format: str, path: Optional[_Path] = None, *, mesh: Optional[_MeshSpec] = None,
                scale: Optional[float] = None, parent_frame: str = "world", link: str = "optical",
                title: str = "certipose plan", link_prefix: str = "camera_", robot_name: str = "certipose_cameras",
@@ -172,18 +181,64 @@ class Solver:
     def verify(self, poses: Union[npt.ArrayLike, _Path], *, tolerance: bool = True,
                progress: Optional[Callable[[int, int], Optional[bool]]] = None) -> dict: ...
 
-# The functions take the Solver's keywords (occlusion, mesh_semantics, scale, working_distance,
-# min_view_angle, occluders, keep_in, keep_out) and the options of the Solver method of their name.
-def solve_facet(mesh: _MeshSpec, camera_spec: _CameraSpec, facet: int, **options: Any) -> FacetResult: ...
-def solve_part(mesh: _MeshSpec, camera_spec: _CameraSpec, **options: Any) -> PartResult: ...
-def iter_part(mesh: _MeshSpec, camera_spec: _CameraSpec, **options: Any) -> PartIterator: ...
-def plan(mesh: _MeshSpec, camera_spec: _CameraSpec, part: Union[PartResult, _Path], **options: Any) -> Plan: ...
-def verify(mesh: _MeshSpec, camera_spec: _CameraSpec, poses: Union[npt.ArrayLike, _Path], **options: Any) -> dict: ...
+# The functions take the Solver's keywords (the scene) and the options of the Solver method of
+# their name.
+def solve_facet(
+    mesh: _MeshSpec, camera_spec: _CameraSpec, facet: int, *, occlusion: str = "aabb", mesh_semantics: str = "auto", scale: float = 1.0,
+    working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
+    occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    position_eps: float = 0.1, orientation_eps: float = 0.38,
+    max_boxes: Optional[int] = None, time_limit: Optional[float] = None, paper_paving: bool = False,
+    corner_depth: Optional[int] = None, corner_rest: Optional[float] = None,
+    refine: Optional[float] = None, grow: bool = False) -> FacetResult: ...
+def solve_part(
+    mesh: _MeshSpec, camera_spec: _CameraSpec, *, occlusion: str = "aabb", mesh_semantics: str = "auto", scale: float = 1.0,
+    working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
+    occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    position_eps: float = 0.1, orientation_eps: float = 0.38,
+    facets: Union[None, str, Sequence[int]] = None, threads: int = 0, boundary: bool = False,
+    keep_largest: Optional[int] = None, max_boxes_per_facet: Optional[int] = None,
+    facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
+    time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
+    corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+    reuse: bool = True, progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> PartResult: ...
+def iter_part(
+    mesh: _MeshSpec, camera_spec: _CameraSpec, *, occlusion: str = "aabb", mesh_semantics: str = "auto", scale: float = 1.0,
+    working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
+    occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    position_eps: float = 0.1, orientation_eps: float = 0.38,
+    facets: Union[None, str, Sequence[int]] = None, threads: int = 0, boundary: bool = False,
+    keep_largest: Optional[int] = None, max_boxes_per_facet: Optional[int] = None,
+    facet_time_limit: Optional[float] = None, max_boxes: Optional[int] = None,
+    time_limit: Optional[float] = None, paper_paving: bool = False, corner_depth: Optional[int] = None,
+    corner_rest: Optional[float] = None, refine: Optional[float] = None, grow: bool = False,
+    reuse: bool = True, progress: Optional[Callable[[Progress], Optional[bool]]] = None) -> PartIterator: ...
+def plan(
+    mesh: _MeshSpec, camera_spec: _CameraSpec, part: Union[PartResult, _Path], *, occlusion: str = "aabb", mesh_semantics: str = "auto", scale: float = 1.0,
+    working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
+    occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    cameras: Optional[int] = None, coverage: Optional[float] = None,
+    candidates_per_facet: int = 1, tolerance: Optional[Sequence[float]] = (0.005, 0.02),
+    lp_seconds: float = 60, exact: Optional[float] = None, threads: int = 0, all_candidates: bool = False,
+    progress: Optional[Callable[[int, int], Optional[bool]]] = None) -> Plan: ...
+def verify(
+    mesh: _MeshSpec, camera_spec: _CameraSpec, poses: Union[npt.ArrayLike, _Path], *, occlusion: str = "aabb", mesh_semantics: str = "auto", scale: float = 1.0,
+    working_distance: Optional[Sequence[float]] = None, min_view_angle: Optional[float] = None,
+    occluders: Sequence[Any] = (), keep_in: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    keep_out: Union[str, Tuple[Any, ...], Sequence[Any]] = (),
+    tolerance: bool = True, progress: Optional[Callable[[int, int], Optional[bool]]] = None) -> dict: ...
 def read_part(folder: _Path) -> PartResult: ...
 def read_plan(path: _Path) -> Plan: ...
 def read_step(path: _Path, deflection: Optional[float] = None,
               angular_deflection: Optional[float] = None) -> Tuple[Mesh, dict]: ...
-def export(plan_or_path: Union[Plan, _Path], format: str, path: Optional[_Path] = None, **options: Any) -> Optional[bytes]: ...
+def export(plan_or_path: Union[Plan, _Path], format: str, path: Optional[_Path] = None, *,
+           mesh: Optional[_MeshSpec] = None, scale: Optional[float] = None, parent_frame: str = "world",
+           link: str = "optical", title: str = "certipose plan", link_prefix: str = "camera_",
+           robot_name: str = "certipose_cameras", snippet: bool = False) -> Optional[bytes]: ...
 def sample_part() -> Mesh: ...
 def example_camera() -> dict: ...
 def available_formats() -> Tuple[str, ...]: ...

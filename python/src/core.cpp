@@ -1075,8 +1075,8 @@ PYBIND11_MODULE(_core, m) {
                 return std::make_shared<cp::triangle_mesh>(run_released([&](std::stop_token) { return cp::read_mesh(path, o); }));
             },
             py::arg("path"), py::arg("scale") = 1.0, py::arg("weld_tolerance") = py::none())
-        .def_property_readonly("num_faces", &cp::triangle_mesh::num_faces)
-        .def_property_readonly("num_vertices", &cp::triangle_mesh::num_vertices)
+        .def_property_readonly("num_faces", &cp::triangle_mesh::num_faces, "The number of facets (triangles).")
+        .def_property_readonly("num_vertices", &cp::triangle_mesh::num_vertices, "The number of vertices.")
         .def_property_readonly("vertices",
                                [](py::object self) {
                                    const auto& m = self.cast<const cp::triangle_mesh&>();
@@ -1084,14 +1084,16 @@ PYBIND11_MODULE(_core, m) {
                                                          m.vertices().data()->data(), self);
                                    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
                                    return a;
-                               })
+                               },
+                               "The (N, 3) float64 vertex coordinates in metres (read-only, no copy).")
         .def_property_readonly("faces",
                                [](py::object self) {
                                    const auto& m = self.cast<const cp::triangle_mesh&>();
                                    py::array_t<std::uint32_t> a({m.num_faces(), std::size_t{3}}, m.faces().data()->data(), self);
                                    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
                                    return a;
-                               })
+                               },
+                               "The (M, 3) uint32 vertex indices of each facet (read-only, no copy).")
         .def("facet",
              [](const cp::triangle_mesh& m, std::size_t i) {
                  const cp::facet& f = m.facet(i);
@@ -1103,26 +1105,38 @@ PYBIND11_MODULE(_core, m) {
                                  py::arg("normal") = std::array<double, 3>{f.normal[0], f.normal[1], f.normal[2]},
                                  py::arg("centroid") = std::array<double, 3>{f.centroid[0], f.centroid[1], f.centroid[2]},
                                  py::arg("area") = f.area);
-             })
+             },
+             py::arg("i"),
+             "Facet i as the solver sees it: a dict of \"vertices\" (3 x 3, metres), \"normal\" (unit, outward), "
+             "\"centroid\" and \"area\" (m^2).")
         .def_property_readonly("areas",
                                [](const cp::triangle_mesh& m) {
                                    std::vector<double> a(m.num_faces());
                                    for (std::size_t i = 0; i < a.size(); ++i) a[i] = m.facet(i).area;
                                    const std::size_t n = a.size();
                                    return owned<double>({n}, std::move(a));
-                               })
-        .def_property_readonly("digest", [](const cp::triangle_mesh& m) { return cp::mesh_digest(m); });
+                               },
+                               "Each facet's area (m^2), as an (M,) float64 array.")
+        .def_property_readonly("digest", [](const cp::triangle_mesh& m) { return cp::mesh_digest(m); },
+                               "The mesh's fingerprint, as the programs record it in summary.json and PLAN.json.");
 
     py::class_<camera_spec>(m, "Camera")
-        .def_static("from_json", &camera_from_json, py::arg("text"), py::arg("source") = "", py::arg("base_dir") = "")
+        .def_static("from_json", &camera_from_json, py::arg("text"), py::arg("source") = "", py::arg("base_dir") = "",
+                    "A camera from the camera JSON's text; `source` names it in errors, `base_dir` resolves the "
+                    "relative paths it holds (a calibration file).")
         .def_static("read", &camera_from_file, py::arg("path"), py::arg("working_distance") = py::none(),
-                    py::arg("min_view_angle") = py::none())
-        .def("to_json", [](const camera_spec& c) { return cp::camera_task_to_json(c.input).dump(); })
-        .def_property_readonly("model", [](const camera_spec& c) { return std::string(cp::model_name(c.input.camera)); })
+                    py::arg("min_view_angle") = py::none(),
+                    "A camera from our camera JSON file or an OpenCV/ROS calibration file (then `working_distance` "
+                    "(d_min, d_max) in metres and `min_view_angle` in radians are required); certipose.camera() "
+                    "calls it.")
+        .def("to_json", [](const camera_spec& c) { return cp::camera_task_to_json(c.input).dump(); },
+             "The camera and task as the camera JSON's text (what to_dict() parses).")
+        .def_property_readonly("model", [](const camera_spec& c) { return std::string(cp::model_name(c.input.camera)); },
+                               "The camera model as the camera JSON names it: \"thin_lens\" or \"pinhole\".")
         .def_property_readonly("distance_range", [](const camera_spec& c) {
             const cp::distance_range r = cp::capped_distance_range(c.input.calibrated(), c.input.task.max_metres_per_pixel);
             return std::pair<double, double>(r.min, r.max);
-        });
+        }, "(nearest, farthest) distance in metres at which a point is in focus and resolved finely enough.");
 
     py::class_<facet_settings>(m, "FacetSettings")
         .def(py::init<>())

@@ -126,6 +126,11 @@ def test_strict_inputs_get_our_errors(solver, tmp_path):
     assert a.bounds.shape != full.bounds.shape or not np.array_equal(a.bounds, full.bounds)  # the region cut
     with pytest.raises(certipose.InvalidArgument, match=r"keep_out\[0\]"):
         certipose.Solver(MESH, CAMERA, keep_out=[3.0])
+    # a tuple of region strings is several regions, not one ("box:..." is not a number)
+    two = ("box:-10,-10,-10,10,10,0.3", "sphere:0,0,0.6,0.01")
+    d = certipose.Solver(MESH, CAMERA, keep_out=two).solve_facet(21, **EPS)
+    e = certipose.Solver(MESH, CAMERA, keep_out=list(two)).solve_facet(21, **EPS)
+    assert np.array_equal(d.bounds, e.bounds)
 
 
 def test_the_examples_part_and_camera_come_with_the_package():
@@ -144,6 +149,72 @@ def test_objects_say_what_they_are(solver):
     assert repr(solver).startswith("<certipose.Solver ")
     assert "integer vertex indices" in certipose.Mesh.__doc__
     assert certipose.Camera.__doc__
+
+
+def _members(cls):
+    for name, value in vars(cls).items():
+        if not name.startswith("_"):
+            yield name, value.__func__ if isinstance(value, staticmethod) else value
+
+
+def test_every_public_name_explains_itself():
+    """help() shows a docstring for every public function, class, method and property (pybind11's
+    bare signature line does not count), and the module's functions show their options by name."""
+    import inspect
+    bare = []
+    for name in certipose.__all__:
+        obj = getattr(certipose, name)
+        if isinstance(obj, (str, tuple)):
+            continue
+        doc = inspect.getdoc(obj) or ""
+        if not doc.strip():
+            bare.append(name)
+        if inspect.isclass(obj) and not issubclass(obj, BaseException):
+            for member, value in _members(obj):
+                if not callable(value) and not isinstance(value, property):
+                    continue
+                doc = (value.__doc__ or "").strip()
+                if not doc or (doc.startswith(member + "(") and "\n" not in doc):
+                    bare.append(f"{name}.{member}")
+    assert not bare, bare
+    # solve_facet(mesh, camera_spec, facet, **options) shows the scene's and the solve's keywords
+    for function, some in [(certipose.solve_facet, {"occlusion", "keep_out", "position_eps", "grow"}),
+                           (certipose.solve_part, {"occluders", "threads", "progress"}),
+                           (certipose.plan, {"scale", "cameras", "tolerance"}),
+                           (certipose.verify, {"mesh_semantics", "tolerance"}),
+                           (certipose.export, {"mesh", "link_prefix", "snippet"})]:
+        names = set(inspect.signature(function).parameters)
+        assert some <= names and "options" not in names, (function.__name__, names)
+    import pydoc
+    text = pydoc.render_doc(certipose.solve_facet, renderer=pydoc.plaintext)
+    assert "position_eps: 'float' = 0.1" in text and "keep_out:" in text, text
+
+
+def test_the_stub_spells_out_what_the_module_takes():
+    """Each function's parameters in __init__.pyi are the module's own, by name and kind."""
+    import ast
+    import inspect
+    stub = ast.parse((pathlib.Path(certipose.__file__).parent / "__init__.pyi").read_text())
+    for node in stub.body:
+        if isinstance(node, ast.FunctionDef) and node.name in certipose.__all__:
+            a = node.args
+            stubbed = [x.arg for x in a.posonlyargs + a.args] + [x.arg for x in a.kwonlyargs]
+            runtime = [p.name for p in inspect.signature(getattr(certipose, node.name)).parameters.values()]
+            assert stubbed == runtime, (node.name, stubbed, runtime)
+
+
+def test_progress_counts_what_the_result_holds(solver):
+    facets = list(range(0, 704, 50))
+    for keep in (False, True):
+        seen = []
+        r = solver.solve_part(facets=facets, threads=1, boundary=keep, progress=lambda p: seen.append(p), **EPS)
+        assert seen and all(p.boundary_found >= p.boundary for p in seen)
+        held = int((~r.valid).sum())
+        if keep:
+            assert all(p.boundary == p.boundary_found for p in seen) and seen[-1].boundary <= held
+        else:
+            assert held == 0 and all(p.boundary == 0 for p in seen)
+        assert max(p.boundary_found for p in seen) > 0  # the paving did leave boxes undecided
 
 
 # ---- soundness: sampled poses of VALID boxes, checked in numpy -------------------------------
