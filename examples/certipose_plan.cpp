@@ -5,9 +5,13 @@
 //                  [--cameras K | --coverage F] [--candidates-per-facet N] [--tolerance P,O | none]
 //                  [--exact SECONDS] [--lp-seconds SECONDS]
 //                  [--threads N] [--occluder MESH[:SCALE]]... [--keep-in REGION]... [--keep-out REGION]...
-//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--working-distance DMIN,DMAX --min-view-angle RAD]
-//                  --out PLAN.json [--ply PLAN.ply] [--quiet]
+//                  [--part-tolerance TX,TY,TZ,ROT [--datum X,Y,Z]] [--compare-run DIR]
+//                  [--working-distance DMIN,DMAX --min-view-angle RAD] --out PLAN.json [--ply PLAN.ply] [--quiet]
 //
+// --compare-run DIR: a certipose-part run of the same part, camera and scene made with another
+// placement tolerance (typically none) is planned the same way, and the summary gives both plans'
+// cameras and shares side by side: what the tolerance costs. Only the summary says it; PLAN.json
+// is this plan's alone.
 // --occluder meshes join the part in the occlusion scene (of the one-shot run and of every C(B));
 // candidates are restricted to the --keep-in / --keep-out camera regions (solver/camera_regions.hpp;
 // the one-shot run per facet, a --part-results run's boxes as they are read). A --part-results run
@@ -79,13 +83,15 @@ struct plan_program {
     struct options {
         input_options_text inputs;
         solver_options_text solver;
-        std::string part_results, out, ply, cameras, coverage, per_facet, exact, lp_seconds, threads, facets, tolerance;
+        std::string part_results, compare_run, out, ply, cameras, coverage, per_facet, exact, lp_seconds, threads, facets,
+            tolerance;
         bool quiet = false, all_candidates = false, lp_whole = false;
     };
 
     struct arguments {
         input_arguments inputs;  ///< --mesh, --camera, --scale and the scene options
         fs::path part_results, out, ply;
+        fs::path compare_run;  ///< --compare-run: a run of another placement tolerance, planned beside this one
         /// The one-shot mode's thresholds (--position-eps, --orientation-eps); unset with --part-results.
         std::optional<certipose::solve_settings> one_shot;
         std::optional<double> coverage, exact;
@@ -102,6 +108,8 @@ struct plan_program {
             std::vector<certipose::named_path> in = inputs.paths();
             if (!part_results.empty())
                 for (const char* f : {"summary.json", "boxes.jsonl", "boxes.cpbx"}) in.push_back({"--part-results", part_results / f});
+            if (!compare_run.empty())
+                for (const char* f : {"summary.json", "boxes.jsonl", "boxes.cpbx"}) in.push_back({"--compare-run", compare_run / f});
             return in;
         }
         std::vector<certipose::named_path> files_written() const {
@@ -114,6 +122,11 @@ struct plan_program {
     static void declare(CLI::App& app, options& text) {
         add_input_options(app, text.inputs, "multiply mesh coordinates by S (as the run did)");
         app.add_option("--part-results", text.part_results, "a certipose-part output folder (summary.json, and boxes.cpbx or boxes.jsonl)")
+            ->type_name("DIR")
+            ->check(CLI::ExistingDirectory);
+        app.add_option("--compare-run", text.compare_run,
+                       "also plan from this certipose-part folder, a run of the same part, camera and scene with another "
+                       "--part-tolerance (or none), and print both plans' cameras and shares side by side")
             ->type_name("DIR")
             ->check(CLI::ExistingDirectory);
         add_solver_options(app, text.solver, one_shot_flags);
@@ -147,6 +160,7 @@ struct plan_program {
         arguments a;
         a.inputs = parse_input_options(text.inputs);
         a.part_results = text.part_results, a.out = text.out, a.ply = text.ply, a.quiet = text.quiet;
+        a.compare_run = text.compare_run;
         a.facets = text.facets;
         a.all_candidates = text.all_candidates;
         a.lp_whole = text.lp_whole;
@@ -195,6 +209,26 @@ double since(std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+/// A placement tolerance as the summary names it: "±3.0, 3.0, 3.0 mm and 1.00° about any axis".
+std::string placement_text(const certipose::placement_tolerance& t) {
+    using certipose::detail::plan_export::fixed;
+    std::string how = "±" + fixed(1000 * t.translation[0], 1) + ", " + fixed(1000 * t.translation[1], 1) + ", " +
+                      fixed(1000 * t.translation[2], 1) + " mm and " + fixed(t.rotation * 180 / std::numbers::pi, 2) + "°";
+    if (!t.axis) return how + " about any axis";
+    return how + " about (" + fixed(t.axis->x(), 3) + ", " + fixed(t.axis->y(), 3) + ", " + fixed(t.axis->z(), 3) + ")" +
+           (t.tilt > 0 ? ", tipped by up to " + fixed(t.tilt * 180 / std::numbers::pi, 2) + "°" : "");
+}
+
+/// "N camera box(es) certify X % of the coverable area (Y % of the part)".
+std::string shares_text(const certipose::plan_document& doc) {
+    const auto pct = [](double a, double b) { return b > 0 ? 100.0 * a / b : 0.0; };
+    char line[160];
+    std::snprintf(line, sizeof line, "%zu camera box(es) certify %.1f %% of the coverable area (%.1f %% of the part)",
+                  doc.cameras.size(), pct(doc.coverage.certified_area, doc.coverage.coverable_area),
+                  pct(doc.coverage.certified_area, doc.coverage.total_area));
+    return line;
+}
+
 
 int plan_program::run(const arguments& args, const interruption& signals) {
     stage_line stage("certipose-plan", args.quiet);
@@ -220,6 +254,21 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     doc.task = here.task;
     here.scene = extra.record;
     doc.scene = extra.record;
+    const certipose::plan_document header = doc;  // what a plan of the --compare-run starts from
+
+    // --compare-run: a run of this part, camera and scene with another placement tolerance,
+    // checked before any work, so that a wrong folder costs nothing and writes nothing.
+    std::optional<certipose::part_summary> other_run;
+    if (!args.compare_run.empty()) {
+        const std::string where = (args.compare_run / "summary.json").string();
+        other_run = certipose::read_part_summary(args.compare_run);
+        certipose::part_summary there = here;
+        there.task.placement = other_run->task.placement;
+        certipose::check_part_run(*other_run, there, where);
+        if (other_run->task.placement == here.task.placement)
+            throw certipose::invalid_argument("--compare-run", where + ": the run has this plan's placement tolerance; compare "
+                                                                       "with a run of another --part-tolerance, or of none");
+    }
 
     // 1. Candidates, and what the run found for each facet (for the reasons of the uncovered).
     const auto t0 = std::chrono::steady_clock::now();
@@ -286,6 +335,25 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     if (signals.interrupted() || !made.completed) return report_interrupted("certipose-plan", signals);
     const auto& plan = doc.coverage;
 
+    // The --compare-run planned the same way, with a solver of its placement tolerance (C(B) is
+    // proven for the placements that run's boxes hold for).
+    std::optional<certipose::plan_document> other;
+    if (other_run) {
+        certipose::candidate_pool<I> other_pool(args.per_facet);
+        stage.show("reading " + args.compare_run.string());
+        certipose::add_run_candidates(other_pool, args.compare_run, *other_run, mesh.num_faces(), args.inputs.scene.regions);
+        program_inputs other_in = in;
+        other_in.camera.task.placement = other_run->task.placement;
+        const auto other_part = build_solver<certipose::part_solver<policies>>(args.inputs, other_in, stage);
+        stage.done();
+        other = header;
+        other->task.placement = other_run->task.placement;
+        const certipose::plan_report r = certipose::make_plan(*other, other_part.solver(), other_pool.boxes(), other_run->facets,
+                                                              !other_run->mesh.digest.empty(), popt);
+        if (progress) std::fputs("\r\033[K", stderr);
+        if (signals.interrupted() || !r.completed) return report_interrupted("certipose-plan", signals);
+    }
+
     certipose::output_files files;
     files.add(args.out, certipose::json_text(certipose::plan_to_json(doc)));
     if (!args.ply.empty()) files.add(args.ply, certipose::plan_ply_text(mesh, doc));
@@ -293,24 +361,19 @@ int plan_program::run(const arguments& args, const interruption& signals) {
     files.commit();
 
     if (!args.quiet) {
-        const auto pct = [](double a, double b) { return b > 0 ? 100.0 * a / b : 0.0; };
-        std::printf("%s (%zu faces): %zu camera box(es) certify %.1f %% of the coverable area (%.1f %% of the part); "
-                    "at least %zu needed (%s bound)\n",
-                    args.inputs.mesh.string().c_str(), mesh.num_faces(), doc.cameras.size(), pct(plan.certified_area, plan.coverable_area),
-                    pct(plan.certified_area, plan.total_area), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
+        std::printf("%s (%zu faces): %s; at least %zu needed (%s bound)\n", args.inputs.mesh.string().c_str(),
+                    mesh.num_faces(), shares_text(doc).c_str(), plan.lower_bound_cameras, plan.lower_bound_method.c_str());
         // The shares above hold for every placement the tolerance admits: say which, beside them.
-        if (const auto& t = doc.task.placement; t && !t->none()) {
-            using certipose::detail::plan_export::fixed;
-            std::string how = "  certified for every placement of the part within ±" + fixed(1000 * t->translation[0], 1) +
-                              ", " + fixed(1000 * t->translation[1], 1) + ", " + fixed(1000 * t->translation[2], 1) +
-                              " mm and " + fixed(t->rotation * 180 / std::numbers::pi, 2) + "°";
-            if (t->axis)
-                how += " about (" + fixed(t->axis->x(), 3) + ", " + fixed(t->axis->y(), 3) + ", " +
-                       fixed(t->axis->z(), 3) + ")" +
-                       (t->tilt > 0 ? ", tipped by up to " + fixed(t->tilt * 180 / std::numbers::pi, 2) + "°" : "");
-            else
-                how += " about any axis";
-            std::printf("%s (--part-tolerance; without it, more of the part may be coverable)\n", how.c_str());
+        const auto& t = doc.task.placement;
+        if (t && !t->none())
+            std::printf("  certified for every placement of the part within %s (--part-tolerance%s)\n",
+                        placement_text(*t).c_str(), other ? "" : "; without it, more of the part may be coverable");
+        if (other) {
+            const auto& o = other->task.placement;
+            const std::string what = o && !o->none() ? "with the placement tolerance " + placement_text(*o)
+                                                     : std::string("without a placement tolerance");
+            std::printf("  %s (--compare-run %s): %s\n", what.c_str(), args.compare_run.string().c_str(),
+                        shares_text(*other).c_str());
         }
         std::printf("  %zu candidates (%s %.2f s), the certified facet sets of %zu inspected %.2f s, choice %.2f s%s; %zu facets uncovered\n",
                     candidates.size(), args.part_results.empty() ? "solved in" : "read in", seconds_candidates,

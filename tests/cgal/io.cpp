@@ -365,7 +365,8 @@ certipose::plan_document sample_plan() {
     p.coverage = {0.0024691357802469134, 0.003, 0.16, 2, "lp", {0.0012345678901234567, 0.0024691357802469134}};
     p.uncovered = {{0, certipose::uncovered_reason::never_visible}, {3, certipose::uncovered_reason::boundary_only},
                    {4, certipose::uncovered_reason::not_selected}, {5, certipose::uncovered_reason::not_solved},
-                   {6, certipose::uncovered_reason::not_finished}, {7, certipose::uncovered_reason::rests_on_occluder}};
+                   {6, certipose::uncovered_reason::not_finished}, {7, certipose::uncovered_reason::rests_on_occluder},
+                   {8, certipose::uncovered_reason::buried}};
     return p;
 }
 

@@ -8,7 +8,7 @@
 # solid and --occlusion boolean refuse it naming what they need; certipose-solve warns that a
 # buried facet cannot be inspected; summary.json records the paving and the options that change
 # the answer; --keep-largest and --box-store are checked (bad values are usage errors); a plan
-# reads the run's binary store.
+# reads the run's binary store and names the buried facets.
 set -uo pipefail
 solve=$1 part=$2 camera=$3 work=$4 plan=${5:-}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
@@ -89,5 +89,13 @@ if [ -n "$plan" ]; then
     "$plan" --mesh dirty.off --camera "$camera" --part-results bin --coverage 0.9 --out PLAN.json -q 2>err ||
         fail "plan from a binary store failed: $(cat err)"
     python3 -c 'import json,sys; p=json.load(open(sys.argv[1])); assert p["cameras"], p' PLAN.json || fail "an empty plan"
+    # The 14 buried facets are named so in the plan (the survey's word), not "never visible".
+    python3 - PLAN.json <<'EOF2' || fail "the plan does not name the buried facets"
+import json, sys
+why = {u["facet"]: u["reason"] for u in json.load(open(sys.argv[1]))["uncovered"]}
+buried = list(range(12, 24)) + [11, 33]
+assert all(why.get(f) == "buried in another body" for f in buried), {f: why.get(f) for f in buried}
+assert sum(r == "buried in another body" for r in why.values()) == 14, why
+EOF2
 fi
 echo "dirty mesh: all checks passed"

@@ -5,7 +5,8 @@
 #   real_world.sh SOLVE PART MESH CAMERA WORK_DIR [PLAN VERIFY]
 # Checked: the tolerance is recorded in task.placement_tolerance (datum: the part's centroid, or
 # --datum) and leaves fewer VALID boxes, with "placement" boundary reasons; bad tolerances and a
-# datum alone are usage errors (exit 2) naming the text; a plan from a run of another tolerance is
+# datum alone are usage errors (exit 2) naming the text; --compare-run puts a plan without the
+# tolerance beside the plan with it; a plan from a run of another tolerance is
 # refused naming task.placement_tolerance, with the same one it works and records it, and
 # certipose-verify's REPORT.json records it; a distorted camera solves and records its
 # coefficients, an impossible one is refused naming distortion_coefficients; a calibration file
@@ -207,6 +208,29 @@ import json, sys
 t = json.load(open(sys.argv[1]))["task"]["placement_tolerance"]
 assert t["translation"] == [0.003, 0.003, 0.003] and t["rotation"] == 0.0175 and len(t["datum"]) == 3, t
 EOF
+# With and without the tolerance side by side: --compare-run plans a run of the same facets made
+# without it, as certipose-plan plans that run on its own; PLAN.json stays this plan's.
+"$part" --mesh "$mesh" --camera "$camera" "${eps[@]}" "${facets[@]}" --out run_free --quiet 2>err \
+    || fail "part without a tolerance failed: $(cat err)"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run_free --coverage 0.9 --out free.json >free.out 2>err \
+    || fail "plan without a tolerance failed: $(cat err)"
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --compare-run run_free --coverage 0.9 --out compared.json \
+    "${tol[@]}" >out 2>err || fail "plan with --compare-run failed: $(cat err)"
+free_shares=$(grep -o "[0-9]* camera box(es) certify .* of the part)" free.out) || fail "no shares in: $(cat free.out)"
+grep -qF "  without a placement tolerance (--compare-run run_free): $free_shares" out \
+    || fail "--compare-run does not give the run's own plan ($free_shares): $(cat out)"
+grep -q "certified for every placement of the part within ±3.0, 3.0, 3.0 mm and 1.00° about any axis (--part-tolerance)$" out \
+    || fail "--compare-run: the tolerance line: $(cat out)"
+python3 - plan.json compared.json <<'EOF' || fail "--compare-run changed PLAN.json"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+assert a["cameras"] == b["cameras"] and a["coverage"] == b["coverage"] and a["task"] == b["task"], (a["coverage"], b["coverage"])
+EOF
+"$plan" --mesh "$mesh" --camera "$camera" --part-results run --compare-run run --coverage 0.9 --out same.json \
+    "${tol[@]}" --quiet 2>err
+[ $? -eq 1 ] || fail "--compare-run of the same tolerance: expected exit 1: $(cat err)"
+grep -q "run/summary.json: the run has this plan's placement tolerance" err || fail "--compare-run same: $(cat err)"
+[ -e same.json ] && fail "a refused --compare-run wrote its output"
 "$verify" --mesh "$mesh" --camera "$camera" --poses plan.json --out report.json --quiet "${tol[@]}" 2>err \
     || fail "verify with --part-tolerance failed: $(cat err)"
 python3 - report.json <<'EOF' || fail "REPORT.json does not record the tolerance"

@@ -23,6 +23,7 @@
 #include "certipose/io/box_store.hpp"
 #include "certipose/io/plan_export.hpp"
 #include "certipose/io/plan_files.hpp"
+#include "certipose/occlusion/mesh_survey.hpp"
 #include "certipose/occlusion/resting_contact.hpp"
 #include "certipose/part/part_solver.hpp"
 
@@ -415,6 +416,15 @@ plan_report make_plan(plan_document& doc, const pose_solver<Policies>& solver,
         for (auto& u : doc.uncovered)
             if (resting[u.facet]) u.reason = uncovered_reason::rests_on_occluder;
     }
+    // Facets with material in front of them: the occlusion's survey of a triangle soup proved
+    // them buried in, or covered by, another body, so no camera can stand where it would see
+    // them, at any ε. The survey decides; this only names it.
+    if constexpr (requires { solver.occlusion().survey(); })
+        if (const mesh_survey* survey = solver.occlusion().survey())
+            for (auto& u : doc.uncovered)
+                if ((u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::boundary_only) &&
+                    u.facet < survey->hidden.size() && material_in_front(survey->hidden[u.facet]))
+                    u.reason = uncovered_reason::buried;
     return report;
 }
 

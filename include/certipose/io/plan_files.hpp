@@ -55,6 +55,9 @@ enum class uncovered_reason {
     /// no VALID box, and it lies face to face on an occluder (a part resting on its fixture):
     /// a finer ε will not help (occlusion/resting_contact.hpp)
     rests_on_occluder,
+    /// no VALID box, and the space in front of it is inside material: the survey of a triangle
+    /// soup found it buried in, or covered by, another body (occlusion/mesh_survey.hpp)
+    buried,
 };
 
 inline constexpr const char* to_string(uncovered_reason r) noexcept {
@@ -65,6 +68,7 @@ inline constexpr const char* to_string(uncovered_reason r) noexcept {
         case uncovered_reason::not_solved: return "not solved";
         case uncovered_reason::not_finished: return "solve stopped early";
         case uncovered_reason::rests_on_occluder: return "rests on an occluder";
+        case uncovered_reason::buried: return "buried in another body";
     }
     return "?";
 }
@@ -165,7 +169,8 @@ inline nlohmann::ordered_json plan_to_json(const plan_document& p) {
 
 inline std::optional<uncovered_reason> uncovered_reason_from_string(std::string_view s) {
     for (auto r : {uncovered_reason::never_visible, uncovered_reason::boundary_only, uncovered_reason::not_selected,
-                   uncovered_reason::not_solved, uncovered_reason::not_finished, uncovered_reason::rests_on_occluder})
+                   uncovered_reason::not_solved, uncovered_reason::not_finished, uncovered_reason::rests_on_occluder,
+                   uncovered_reason::buried})
         if (s == to_string(r)) return r;
     return std::nullopt;
 }
@@ -304,7 +309,8 @@ inline std::vector<char> plan_unseen_facets(std::size_t num_faces, const plan_do
     std::vector<char> unseen(num_faces, 0);
     for (const auto& u : plan.uncovered)
         if (u.facet < num_faces)
-            unseen[u.facet] = u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::rests_on_occluder;
+            unseen[u.facet] = u.reason == uncovered_reason::never_visible || u.reason == uncovered_reason::rests_on_occluder ||
+                              u.reason == uncovered_reason::buried;
     return unseen;
 }
 
