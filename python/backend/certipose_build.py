@@ -11,7 +11,8 @@ What the build needs from the machine (a C++20 compiler, CMake, Ninja or make, a
 libraries of README's install script) is checked by CMake; when something is missing, the
 build ends with one line naming it and the Debian package that provides it. Environment:
 CMAKE_BUILD_PARALLEL_LEVEL (default 2) sets the build's jobs; CERTIPOSE_BUILD_DIR the folder
-CMake builds in (default build/python-<interpreter> in the checkout, so a rebuild is quick).
+CMake builds in (default build/python-<interpreter>-<hash of its installation> in the checkout,
+so a rebuild is quick).
 Node.js and npm make the web viewer part of the module (Plan.export("html")): web/'s locked
 packages are installed with `npm ci` if they are not there yet.
 """
@@ -137,8 +138,11 @@ def _build_core():
     """Configures and builds certipose._core with CMake; returns the built shared object."""
     if shutil.which("cmake") is None:
         raise BuildError("certipose: the build needs CMake 3.22 or later: apt-get install cmake")
-    tag = f"{sys.implementation.cache_tag}"
-    build = pathlib.Path(os.environ.get("CERTIPOSE_BUILD_DIR") or ROOT / "build" / f"python-{tag}").resolve()
+    # One folder per Python installation (venvs of one share it): CMake caches what it found of
+    # the interpreter, so Debian's 3.11 and pyenv's 3.11 must not share a folder.
+    where = hashlib.sha256(os.path.realpath(sys.base_prefix).encode()).hexdigest()[:8]
+    default = ROOT / "build" / f"python-{sys.implementation.cache_tag}-{where}"
+    build = pathlib.Path(os.environ.get("CERTIPOSE_BUILD_DIR") or default).resolve()
     build.mkdir(parents=True, exist_ok=True)
     log = build / "certipose-build.log"
     log.write_text("", encoding="utf-8")

@@ -248,7 +248,7 @@ class Boxes:
         """One record per box, as a numpy structured array that ``pandas.DataFrame(r.to_records())``
         turns into a table: ``facet``, ``cls`` ("valid" / "boundary"), ``reason``, then ``x_lo``,
         ``x_hi``, ``y_lo``, ... ``beta_hi`` (metres, radians; the certified bounds as they are)."""
-        fields = [("facet", _np.int64), ("cls", "U8"), ("reason", "U32")] + [
+        fields = [("facet", _np.int64), ("cls", "U8"), ("reason", f"U{max(map(len, BOUNDARY_REASONS))}")] + [
             (f"{n}_{end}", _np.float64) for n in _BOUND_NAMES for end in ("lo", "hi")]
         out = _np.empty(len(self), dtype=fields)
         out["facet"] = self._facet_column()
