@@ -15,7 +15,7 @@ import { existsSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-import { launchChromium } from './chromium.mjs';
+import { drawnPixels, launchChromium, MIN_DRAWN_FRACTION } from './chromium.mjs';
 
 const READY_TIMEOUT_MS = Number(process.env.CERTIPOSE_READY_TIMEOUT_MS || 120000);
 const [fileArg, camerasArg, screenshotArg] = process.argv.slice(2);
@@ -71,20 +71,10 @@ try {
     ]).catch((e) => { problems.push(`viewer: ${e.message.split('\n')[0]}`); return false; });
     check(ready, 'the inline viewer is ready');
     if (ready) {
-      // WebGL drew: a share of the canvas differs from the background (as viewer_test.mjs checks).
-      const drawn = await frame.evaluate(() => {
-        const canvas = document.querySelector('canvas');
-        const copy = document.createElement('canvas');
-        copy.width = canvas.width; copy.height = canvas.height;
-        const g = copy.getContext('2d');
-        g.drawImage(canvas, 0, 0);
-        const d = g.getImageData(0, 0, copy.width, copy.height).data;
-        const [r0, g0, b0] = [d[0], d[1], d[2]];
-        let differ = 0;
-        for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - r0) + Math.abs(d[i + 1] - g0) + Math.abs(d[i + 2] - b0) > 24) differ++;
-        return differ / (d.length / 4);
-      });
-      check(drawn > 0.005, `the viewer drew the part (${(100 * drawn).toFixed(1)} % of its canvas)`);
+      // WebGL drew, as viewer_test.mjs checks it.
+      const px = await drawnPixels(frame);
+      const drawn = px.differing / Math.max(1, px.total);
+      check(drawn > MIN_DRAWN_FRACTION, `the viewer drew the part (${(100 * drawn).toFixed(1)} % of its canvas)`);
     }
   }
   check(problems.length === 0, `no console problem or outside request${problems.length ? ': ' + problems.join('; ') : ''}`);

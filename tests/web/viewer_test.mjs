@@ -24,11 +24,10 @@ import { existsSync } from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-import { launchChromium } from './chromium.mjs';
+import { drawnPixels, launchChromium, MIN_DRAWN_FRACTION } from './chromium.mjs';
 
 
 const READY_TIMEOUT_MS = Number(process.env.CERTIPOSE_READY_TIMEOUT_MS || 120000);
-const MIN_DRAWN_FRACTION = 0.005; // at least 0.5% of the canvas must differ from the background
 const VIEWPORT = { width: 1280, height: 800 };
 
 const [fileArg, screenshotArg] = process.argv.slice(2);
@@ -130,21 +129,7 @@ try {
   }
 
   // 2. Something was drawn: count canvas pixels that differ from the background colour.
-  const drawn = await page.evaluate((bg) => {
-    const gl = document.querySelector('#view canvas');
-    const c = document.createElement('canvas');
-    c.width = gl.width;
-    c.height = gl.height;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(gl, 0, 0);
-    const data = ctx.getImageData(0, 0, c.width, c.height).data;
-    const want = [1, 3, 5].map((i) => parseInt(bg.slice(i, i + 2), 16));
-    let differing = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      if (Math.abs(data[i] - want[0]) > 6 || Math.abs(data[i + 1] - want[1]) > 6 || Math.abs(data[i + 2] - want[2]) > 6) differing++;
-    }
-    return { differing, total: c.width * c.height, width: c.width, height: c.height };
-  }, scene.background);
+  const drawn = await drawnPixels(page);
   const fraction = drawn.differing / Math.max(1, drawn.total);
   const drawnWhat = `${drawn.differing} of ${drawn.total} canvas pixels (${(100 * fraction).toFixed(1)}%, ${drawn.width}x${drawn.height}) differ from the background ${scene.background}`;
   if (fraction >= MIN_DRAWN_FRACTION) pass(drawnWhat);
